@@ -1,0 +1,27 @@
+(defproject cortex "0.1.0-SNAPSHOT"
+  :description "Build physical creatures for jMonkeyEngine 3 from Blender files."
+  :url "https://github.com/aurellem/cortex"
+  :license {:name "GNU General Public License, version 3"
+            :url "https://www.gnu.org/licenses/gpl-3.0.html"}
+  ;; Leiningen's base profile wants nrepl 1.0.0 and org.nrepl/incomplete,
+  ;; which Maven Central lacks; Debian's packages put them here.
+  :repositories [["debian" {:url "file:///usr/share/maven-repo"
+                            :checksum :ignore
+                            :snapshots false}]]
+  :dependencies [[org.clojure/clojure "1.11.1"]
+                 [org.jmonkeyengine/jme3-core "3.2.4-stable"]
+                 [org.jmonkeyengine/jme3-desktop "3.2.4-stable"]
+                 [org.jmonkeyengine/jme3-jbullet "3.2.4-stable"
+                  :exclusions [jbullet/jbullet stack-alloc/stack-alloc java3d/vecmath]]
+                 [com.github.stephengold/jbullet "1.0.3"]
+                 ;; pure-Java zstd, for .blend files saved by Blender 3.0 and later
+                 [io.airlift/aircompressor "0.27"]]
+  :source-paths ["src"]
+  :java-source-paths ["java"]
+  :resource-paths ["assets"]
+  :javac-options ["--release" "11" "-Xlint:-options"]
+  :jvm-opts ["-Djava.util.logging.config.file=logging.properties"]
+  :main cortex.main
+  :aliases {"tangle" ["run" "-m" "cortex.tangle"]}
+  :profiles {:dev {:dependencies [[org.jmonkeyengine/jme3-blender "3.2.4-stable"]
+                                  [org.clojure/test.check "1.1.1"]]}})

@@ -1,0 +1,166 @@
+(ns cortex.util
+  "Small helpers the rest of cortex leans on: walking scene graphs,
+  making simple physical shapes, lights, coordinate changes between
+  Blender and jMonkeyEngine, and printing from jME's thread."
+  (:import (com.jme3.app SimpleApplication)
+           (com.jme3.app.state AbstractAppState)
+           (com.jme3.asset AssetManager DesktopAssetManager)
+           (com.jme3.bullet.collision.shapes BoxCollisionShape
+                                             SphereCollisionShape)
+           (com.jme3.bullet.control RigidBodyControl)
+           (com.jme3.font BitmapText)
+           (com.jme3.light AmbientLight DirectionalLight)
+           (com.jme3.material Material)
+           (com.jme3.math ColorRGBA Quaternion Vector3f)
+           (com.jme3.scene Geometry Node Spatial)
+           (com.jme3.scene.shape Box Sphere)
+           (com.jme3.system JmeSystem)))
+
+(defn node-seq
+  "Every spatial under (and including) `root`, depth first."
+  [^Spatial root]
+  (tree-seq #(instance? Node %) #(seq (.getChildren ^Node %)) root))
+
+(defn nodify
+  "A new Node holding `children`, named `name` (\"\" when not given)."
+  ([children] (nodify "" children))
+  ([^String name children]
+   (let [node (Node. name)]
+     (doseq [^Spatial child children]
+       (.attachChild node child))
+     node)))
+
+(defn map-vals
+  "`m` with `f` applied to each of its values."
+  [f m]
+  (into (empty m) (for [[k v] m] [k (f v)])))
+
+(defn jme-to-blender
+  "A jME (Y-up) vector in Blender's Z-up coordinates."
+  ^Vector3f [^Vector3f v]
+  (Vector3f. (.x v) (- (.z v)) (.y v)))
+
+(defn blender-to-jme
+  "A Blender (Z-up) vector in jME's Y-up coordinates."
+  ^Vector3f [^Vector3f v]
+  (Vector3f. (.x v) (.z v) (- (.y v))))
+
+(defn world-to-local
+  "`world-point` in the coordinates of `spatial`, undoing its world
+  translation, rotation and scale."
+  ^Vector3f [^Spatial spatial ^Vector3f world-point]
+  (.worldToLocal spatial world-point nil))
+
+(def ^:private repl-out
+  "The writer that was *out* when this namespace loaded: the REPL's."
+  *out*)
+
+(defn println-repl
+  "println to the REPL that loaded cortex, even when called from jME's
+  render thread, whose *out* is the process's standard output."
+  [& args]
+  (binding [*out* repl-out]
+    (apply println args)
+    (flush)))
+
+(defn asset-manager
+  "A new desktop AssetManager that finds jME's own assets and cortex's
+  assets/ folder on the classpath."
+  ^AssetManager []
+  (JmeSystem/newAssetManager
+   (.getResource (.getContextClassLoader (Thread/currentThread))
+                 "com/jme3/asset/Desktop.cfg")))
+
+(def ^:private shared-assets
+  "One AssetManager for making materials outside any running world."
+  (delay (asset-manager)))
+
+(defn shared-asset-manager
+  "An AssetManager shared by everything cortex builds before a world
+  exists; made on first use."
+  ^AssetManager []
+  @shared-assets)
+
+(def ^:private shape-defaults
+  {:name "shape"
+   :color ColorRGBA/Blue
+   :material "Common/MatDefs/Misc/Unshaded.j3md"
+   :position Vector3f/ZERO
+   :rotation Quaternion/IDENTITY
+   :mass 1
+   :friction 0.5
+   :physical? true})
+
+(defn- shape
+  "A Geometry for `mesh` placed and coloured by `options` (see `box`),
+  with a rigid body of `collision-shape` unless :physical? is false."
+  [mesh collision-shape options]
+  (let [{:keys [name color material position rotation mass friction physical?]}
+        (merge shape-defaults options)
+        geom (Geometry. ^String name mesh)]
+    (.setMaterial geom (doto (Material. (shared-asset-manager) ^String material)
+                         (.setColor "Color" ^ColorRGBA color)))
+    (.setLocalTranslation geom ^Vector3f position)
+    (.setLocalRotation geom ^Quaternion rotation)
+    (when physical?
+      (.addControl geom (doto (RigidBodyControl. collision-shape (float mass))
+                          (.setFriction (float friction)))))
+    geom))
+
+(defn box
+  "A box with half-extents `x`, `y`, `z`. Options: :name, :color,
+  :material (a .j3md with a Color parameter), :position, :rotation,
+  :mass (0 is static), :friction and :physical? (false for scenery
+  with no rigid body)."
+  ([] (box 0.5 0.5 0.5))
+  ([x y z & {:as options}]
+   (shape (Box. (float x) (float y) (float z))
+          (BoxCollisionShape. (Vector3f. x y z))
+          (merge {:name "box"} options))))
+
+(defn sphere
+  "A sphere of `radius`, with the same options as `box`."
+  ([] (sphere 1))
+  ([radius & {:as options}]
+   (shape (Sphere. 32 32 (float radius))
+          (SphereCollisionShape. (float radius))
+          (merge {:name "sphere"} options))))
+
+(defn light-up-everything
+  "Light the world's root node from above and around, enough to see
+  lit materials from any side. Returns the world."
+  [^SimpleApplication world]
+  (let [root (.getRootNode world)]
+    (doseq [dir [(Vector3f. -0.5 -1 -0.4) (Vector3f. 0.6 -0.3 0.7)]]
+      (.addLight root (doto (DirectionalLight.)
+                        (.setDirection (.normalizeLocal ^Vector3f dir))
+                        (.setColor (ColorRGBA. 0.7 0.7 0.7 1)))))
+    (.addLight root (doto (AmbientLight.)
+                      (.setColor (ColorRGBA. 0.35 0.35 0.35 1))))
+    world))
+
+(defn dilation
+  "How many simulated seconds passed per wall-clock second."
+  [simulated-seconds wall-seconds]
+  (if (pos? wall-seconds) (/ simulated-seconds wall-seconds) 0.0))
+
+(defn display-dilated-time
+  "Show, in the corner of the world's screen, simulated time beside wall
+  time, read from `timer`: with a fixed-step timer the two drift apart
+  and the ratio says how fast the simulation really runs. Returns the
+  world."
+  [^SimpleApplication world ^com.jme3.system.Timer timer]
+  (let [text (doto (BitmapText. (.loadFont (.getAssetManager world)
+                                           "Interface/Fonts/Default.fnt"))
+               (.setLocalTranslation 10 (float 40) 0))
+        start (System/nanoTime)]
+    (.attachChild (.getGuiNode world) text)
+    (.attach (.getStateManager world)
+             (proxy [AbstractAppState] []
+               (update [_]
+                 (let [sim (.getTimeInSeconds timer)
+                       wall (/ (- (System/nanoTime) start) 1e9)]
+                   (.setText text (format "simulated %.2f s | wall %.2f s | x%.2f"
+                                          (double sim) wall
+                                          (double (dilation sim wall))))))))
+    world))

@@ -1,0 +1,116 @@
+(ns cortex.world-test
+  (:require [clojure.test :refer [deftest is testing]]
+            [cortex.util :as util]
+            [cortex.world :as world])
+  (:import (com.jme3.bullet.control RigidBodyControl)
+           (com.jme3.math Quaternion Vector3f)
+           (cortex RatchetTimer)))
+
+(defn- earth-gravity [w] (world/set-gravity w (Vector3f. 0 -9.81 0)))
+
+(defn- floor [] (util/box 10 1 10 :position (Vector3f. 0 -1 0) :mass 0 :name "floor"))
+
+(defn- live-threads [] (set (keys (Thread/getAllStackTraces))))
+
+(deftest box-comes-to-rest-on-the-floor
+  (let [b (util/box 0.5 0.25 0.5 :position (Vector3f. 0 3 0))
+        w (world/world (util/nodify [b (floor)]) {} earth-gravity world/no-op)]
+    (world/run-world! w 300)
+    (is (= 300 (:frames @w)))
+    (testing "resting height is the half-height above the floor's top (y = 0)"
+      (is (< (Math/abs (- (.y (.getWorldTranslation b)) 0.25)) (* 0.01 0.25))))
+    (testing "it has stopped"
+      (is (< (.length (.getLinearVelocity ^RigidBodyControl (.getControl b RigidBodyControl)))
+             0.01)))))
+
+(defn- tumbling-boxes
+  "Five boxes dropped, turned, onto a floor and each other."
+  []
+  (for [i (range 5)]
+    (util/box 0.4 0.3 0.5 :name (str "box-" i)
+              :position (Vector3f. (* 0.3 i) (+ 1 (* 1.1 i)) (* -0.2 i))
+              :rotation (doto (Quaternion.) (.fromAngles (* 0.3 i) 0.2 (* 0.1 i))))))
+
+(defn- run-and-record
+  [frames]
+  (let [boxes (tumbling-boxes)
+        w (world/world (util/nodify (cons (floor) boxes)) {} earth-gravity world/no-op)]
+    (world/run-world! w frames)
+    (vec (for [b boxes
+               :let [t (.getWorldTranslation b) r (.getWorldRotation b)]]
+           [(.x t) (.y t) (.z t) (.getX r) (.getY r) (.getZ r) (.getW r)]))))
+
+(deftest runs-repeat-to-the-bit
+  (let [a (run-and-record 300)
+        b (run-and-record 300)]
+    (is (= a b))
+    (testing "the boxes really moved and collided"
+      (is (every? #(< (second %) 3) a)))))
+
+(deftest fixed-step-time
+  (let [timer (RatchetTimer. 60)
+        seen (atom [])
+        w (world/world (util/nodify []) {}
+                       (fn [w] (.setTimer w timer))
+                       (fn [_ tpf]
+                         (swap! seen conj [tpf (.getTime timer) (.getTimeInSeconds timer)])
+                         (Thread/sleep 20)))
+        start (System/nanoTime)]
+    (world/run-world! w 12)
+    (testing "12 slow frames are exactly 12/60 simulated seconds, 1/60 each"
+      (is (= (repeat 12 (float (/ 1 60))) (map first @seen)))
+      (is (= (range 1 13) (map second @seen)))
+      (is (= (float (/ 12 60)) (last (map last @seen)))))
+    (testing "while the wall clock went further"
+      (is (> (/ (- (System/nanoTime) start) 1e9) 0.24)))))
+
+(deftest headless-runs-leave-no-threads
+  (let [before (live-threads)]
+    (world/run-world! (world/world (util/nodify [(floor)]) {} world/no-op world/no-op) 10)
+    (is (empty? (remove before (filter #(.isAlive %) (live-threads)))))))
+
+(deftest failures-end-the-run
+  (testing "an update function that throws stops the world with an ex-info"
+    (let [w (world/world (util/nodify []) {} world/no-op
+                         (fn [w _] (when (= 3 (:frames @w)) (throw (ex-info "boom" {})))))
+          e (try (world/run-world! w 100) nil (catch clojure.lang.ExceptionInfo e e))]
+      (is (re-find #"boom" (ex-message e)))
+      (is (< (:frames @w) 100))))
+  (testing "so does a setup function that throws"
+    (let [e (try (world/run-world! (world/world (util/nodify []) {}
+                                                (fn [_] (throw (IllegalStateException. "bad setup")))
+                                                world/no-op)
+                                   10)
+                 nil
+                 (catch clojure.lang.ExceptionInfo e e))]
+      (is (re-find #"bad setup" (ex-message e)))))
+  (testing "a frame count that is not a positive integer"
+    (is (thrown? clojure.lang.ExceptionInfo
+                 (world/run-world! (world/world (util/nodify []) {} world/no-op world/no-op) 0)))))
+
+(deftest gravity-can-be-switched-off
+  (let [b (util/box 0.5 0.5 0.5 :position (Vector3f. 0 5 0))
+        w (world/world (util/nodify [b]) {}
+                       (fn [w] (world/set-gravity w Vector3f/ZERO)) world/no-op)]
+    (world/run-world! w 60)
+    (is (= 5.0 (double (.y (.getWorldTranslation b)))))))
+
+(deftest keys
+  (is (= "KeyTrigger" (.getSimpleName (class (world/trigger "key-space")))))
+  (is (thrown-with-msg? clojure.lang.ExceptionInfo #"key-nope"
+                        (world/trigger "key-nope")))
+  (testing "space fires a cannon ball into the world"
+    (let [bodies (atom nil)
+          w (world/world (util/nodify []) world/standard-debug-controls world/no-op
+                         (fn [w _]
+                           (when (= 2 (:frames @w))
+                             ((get world/standard-debug-controls "key-space") w false))
+                           (reset! bodies (count (.getRigidBodyList (world/physics-space w))))))]
+      (world/run-world! w 30)
+      (let [balls (filter #(= "cannon-ball" (.getName %)) (util/node-seq (.getRootNode w)))]
+        (is (= 1 (count balls)))
+        (is (= 1 @bodies))
+        (testing "and it flies away from the camera"
+          (is (> (.distance (.getWorldTranslation (first balls))
+                            (.getLocation (.getCamera w)))
+                 5)))))))
