@@ -218,11 +218,16 @@ def dump(path):
     return path
 
 
-def _args():
+def script_args():
+    """Command-line arguments meant for the script.
+
+    Inside the Blender executable they follow "--" (none without it); with
+    the bpy module it is a plain python command line.
+    """
     argv = sys.argv
     if "--" in argv:
         return argv[argv.index("--") + 1:]
-    if bpy.app.background and os.path.basename(argv[0]).startswith("blender"):
+    if os.path.basename(argv[0]).lower().startswith("blender"):
         return []
     return argv[1:]
 
@@ -233,7 +238,7 @@ def main(args=None):
     p = argparse.ArgumentParser(prog="dump.py", description=__doc__.split("\n")[0])
     p.add_argument("-i", "--input", help=".blend file to open first (default: the file already open)")
     p.add_argument("-o", "--output", help="JSON file to write (default: stdout)")
-    a = p.parse_args(_args() if args is None else args)
+    a = p.parse_args(script_args() if args is None else args)
     if a.input:
         bpy.ops.wm.open_mainfile(filepath=os.path.abspath(a.input), load_ui=False)
     if a.output:

@@ -280,8 +280,7 @@ def build_props():
 
 
 def main():
-    argv = sys.argv
-    args = argv[argv.index("--") + 1:] if "--" in argv else argv[1:]
+    args = dump.script_args()
     if len(args) != 1:
         sys.exit("usage: make_fixtures.py OUTDIR")
     out = os.path.abspath(args[0])
