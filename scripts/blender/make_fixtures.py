@@ -36,10 +36,12 @@ def small_file_settings():
     are UI data that the tests do not need.  Their removal is cosmetic, so
     failures are ignored.
     """
+    filepaths = bpy.context.preferences.filepaths
     try:
-        bpy.context.preferences.filepaths.file_preview_type = "NONE"
+        filepaths.file_preview_type = "NONE"
     except (AttributeError, TypeError):
         pass
+    filepaths.save_version = 0   # no .blend1 backups when overwriting
     try:
         keep = bpy.data.workspaces.get("Layout")
         if keep is not None:
