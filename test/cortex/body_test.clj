@@ -1,0 +1,245 @@
+(ns cortex.body-test
+  (:require [clojure.java.io :as io]
+            [clojure.test :refer [deftest is testing]]
+            [cortex.body :as body]
+            [cortex.util :as util]
+            [cortex.world :as world])
+  (:import (com.jme3.bullet.control RigidBodyControl)
+           (com.jme3.bullet.joints HingeJoint PhysicsJoint SixDofJoint ConeJoint)
+           (com.jme3.math FastMath Quaternion Vector3f)
+           (com.jme3.scene Geometry Node)
+           (com.jme3.scene.shape Box Sphere)))
+
+(defn- segment
+  [name ^Vector3f position & {:keys [mass half] :or {half [1 0.25 0.25]}}]
+  (let [[x y z] half
+        geom (Geometry. name (Box. (float x) (float y) (float z)))
+        object (doto (Node. name) (.attachChild geom) (.setLocalTranslation position))]
+    (when mass (.setUserData object "mass" mass))
+    object))
+
+(defn- marker
+  [name ^Vector3f position text & {:keys [rotation]}]
+  (cond-> (doto (Node. name) (.setLocalTranslation position))
+    text (doto (.setUserData "joint" text))
+    rotation (doto (.setLocalRotation ^Quaternion rotation))))
+
+(defn- creature
+  [name segments markers]
+  (util/nodify name (concat segments [(util/nodify "joints" markers)])))
+
+(defn- code-worm
+  "Two 2-unit segments along x with a 0.04 gap, joined at the origin."
+  ([text] (code-worm text Vector3f/ZERO))
+  ([text ^Vector3f offset]
+   (creature "worm"
+             [(segment "tail" (.add offset (Vector3f. -1.02 0 0)) :mass (float 1))
+              (segment "head" (.add offset (Vector3f. 1.02 0 0)) :mass (float 2))]
+             [(marker "neck" offset text)])))
+
+(defn- names [spatials] (map #(.getName %) spatials))
+
+(defn- y-turn [angle] (doto (Quaternion.) (.fromAngleAxis (float angle) Vector3f/UNIT_Y)))
+
+(deftest segments-become-rigid-bodies
+  (let [c (doto (creature "c" [(segment "a" (Vector3f. 0 0 0) :mass (float 2.5))
+                               (segment "b" (Vector3f. 3 0 0))
+                               (segment "ground" (Vector3f. 6 0 0) :mass 0)]
+                          [])
+            (body/physical!))
+        mass-of #(.getMass ^RigidBodyControl (.getControl ^Geometry % RigidBodyControl))]
+    (is (= {"a" 2.5 "b" 1.0 "ground" 0.0}
+           (into {} (for [g (body/segments c)] [(.getName g) (double (mass-of g))]))))
+    (testing "calling it again adds no second body"
+      (body/physical! c)
+      (is (every? #(= 1 (.getNumControls ^Geometry %)) (body/segments c))))))
+
+(deftest big-hulls-are-simplified
+  (let [points (body/mesh-points (Sphere. 32 32 1) (Vector3f. 1 1 1))
+        hull (body/simplify-hull points body/max-hull-points)]
+    (is (> (count points) 900))
+    (is (<= (count hull) body/max-hull-points))
+    (testing "every point kept is a vertex of the mesh"
+      (is (every? (set points) hull)))
+    (testing "the simplified hull still reaches out in every direction"
+      (doseq [d (body/sphere-directions 37)]
+        (is (> (apply max (map #(.dot ^Vector3f d ^Vector3f %) hull)) 0.93))))
+    (testing "small hulls are kept whole"
+      (is (= 8 (count (body/simplify-hull (body/mesh-points (Box. 1 1 1) (Vector3f. 1 1 1)) 100)))))))
+
+(deftest hull-points-carry-world-scale
+  (let [points (body/mesh-points (Box. 1 1 1) (Vector3f. 2 3 4))
+        extent (fn [axis] (set (map #(Math/abs (double (.get ^Vector3f % (int axis)))) points)))]
+    (is (= [#{2.0} #{3.0} #{4.0}] (map extent [0 1 2])))))
+
+(deftest finding-joint-targets
+  (let [c (doto (code-worm "{:type :point}") (body/physical!))
+        joint (first (body/joints c))]
+    (is (= ["neck"] (names (body/joints c))))
+    (is (= ["tail" "head"] (names (body/joint-targets c joint))))
+    (testing "a joint turned half way round sees the segments the other way"
+      (.setLocalRotation joint (y-turn FastMath/PI))
+      (is (= ["head" "tail"] (names (body/joint-targets c joint)))))
+    (testing "a creature without a joints node has no joints"
+      (is (empty? (body/joints (util/nodify [(segment "x" Vector3f/ZERO)])))))))
+
+(deftest targets-under-turned-scaled-parents
+  (let [;; the segments hang under a parent turned a quarter round Y and
+        ;; scaled by 2: in the world they line up along z, 4 units long
+        holder (doto (Node. "holder")
+                 (.setLocalRotation (y-turn FastMath/HALF_PI))
+                 (.setLocalScale 2.0)
+                 (.setLocalTranslation 5 0 0))
+        _ (doseq [s [(segment "near" (Vector3f. -1.02 0 0)) (segment "far" (Vector3f. 1.02 0 0))
+                     (segment "other" (Vector3f. 5 0 0))]]
+            (.attachChild holder s))
+        c (doto (creature "turned" [holder] [(marker "j" (Vector3f. 5 0 0) "{:type :point}")])
+            (body/physical!))
+        [a b] (body/joint-targets c (first (body/joints c)))]
+    (is (= #{"near" "far"} (set (names [a b]))))
+    (testing "ordered by world position: Blender's (1,1,1) weighs jME z by -1"
+      (is (> (.z (.getWorldTranslation a)) (.z (.getWorldTranslation b)))))))
+
+(deftest a-joint-needs-two-segments
+  (let [c (doto (creature "lonely" [(segment "only" (Vector3f. -1.02 0 0))]
+                          [(marker "j" Vector3f/ZERO "{:type :point}")])
+            (body/physical!))
+        e (try (body/joints! c) nil (catch clojure.lang.ExceptionInfo e e))]
+    (is (some? e))
+    (is (re-find #"joint \"j\"" (ex-message e)))
+    (is (re-find #"creature \"lonely\"" (ex-message e)))
+    (is (re-find #"found 1 segment" (ex-message e)))))
+
+(deftest joint-descriptions-are-data
+  (is (= {:type :hinge :limit [0 (/ Math/PI 2)]}
+         (body/read-joint "{:type :hinge :limit [0 (/ Math/PI 2)]}")))
+  (is (= (Vector3f. 0 1 0) (:axis (body/read-joint "{:type :hinge :axis (Vector3f. 0 1 0)}"))))
+  (is (= [6 -1 (* 2 Math/E)] (:v (body/read-joint "{:type :x :v [(+ 1 2 3) (- 1) (* 2 Math/E)]}")))))
+
+(defn- message-of [f] (try (f) nil (catch clojure.lang.ExceptionInfo e (ex-message e))))
+
+(deftest bad-descriptions-are-named-errors
+  (doseq [[text pattern]
+          [["#=(java.lang.System/exit 1)" #"cannot read"]
+           ["{:type :point :x (System/exit 1)}" #"not an allowed operation.*System/exit"]
+           ["{:type :point :x foo}" #"unknown symbol: foo"]
+           ["{:type :point :x \"text\"}" #"not allowed"]
+           ["{:type :point" #"cannot read"]
+           ["[:point]" #"map with a :type"]
+           ["{:type :hinge :limit [0 (/ 1 0)]}" #"(?i)divide by zero"]
+           ["{:type :hinge :axis (Vector3f. 1 2)}" #"three numbers"]
+           ["#inst \"2020\"" #"not allowed in a joint description"]
+           ["#object[java.io.File 0 \"/\"]" #"cannot read"]]]
+    (let [m (message-of #(body/read-joint text))]
+      (is (and m (re-find pattern m)) (str text " -> " m)))))
+
+(defn- connect-message
+  [text]
+  (message-of #(body/body! (code-worm text))))
+
+(deftest bad-joints-name-the-joint
+  (testing "unknown types list the known ones"
+    (let [m (connect-message "{:type :spring}")]
+      (is (re-find #"joint \"neck\": unknown joint type :spring; known types: :cone, :hinge, :point" m))))
+  (testing "a hinge needs limits"
+    (is (re-find #"joint \"neck\": hinge needs :limit" (connect-message "{:type :hinge}"))))
+  (testing "a cone needs its three angles"
+    (is (re-find #"joint \"neck\": cone joint needs a finite number for :twist"
+                 (connect-message "{:type :cone :limit-xz 1 :limit-xy 1}"))))
+  (testing "a joint empty with no description"
+    (is (re-find #"joint \"neck\": it has no joint property" (connect-message nil))))
+  (testing "a mass that is not a number names the object"
+    (let [c (creature "c" [(segment "heavy" Vector3f/ZERO :mass "lots")] [])]
+      (is (re-find #"object \"heavy\": mass must be a non-negative number, not \"lots\""
+                   (message-of #(body/physical! c)))))))
+
+(deftest descriptions-never-run-code
+  (let [f (io/file (System/getProperty "java.io.tmpdir") (str "cortex-pwned-" (System/nanoTime)))
+        path (.getPath f)]
+    (doseq [text [(str "#=(clojure.core/spit \"" path "\" \"x\")")
+                  (str "{:type :point :x (spit \"" path "\" \"x\")}")
+                  (str "{:type :point :x (clojure.core/spit \"" path "\" \"x\")}")
+                  (str "{:type (do (spit \"" path "\" \"x\") :point)}")]]
+      (is (some? (connect-message text)))
+      (is (not (.exists f)) text))))
+
+(def ^:private earth (Vector3f. 0 -9.81 0))
+
+(defn- floor [] (util/box 20 1 20 :position (Vector3f. 0 -1 0) :mass 0 :name "floor"))
+
+(defn- joint-gap
+  "How far apart the two ends of `joint` are in the world."
+  [^PhysicsJoint joint]
+  (let [end (fn [body pivot] (.add (.getPhysicsLocation body)
+                                   (.mult (.getPhysicsRotation body) ^Vector3f pivot)))]
+    (.distance (end (.getBodyA joint) (.getPivotA joint))
+               (end (.getBodyB joint) (.getPivotB joint)))))
+
+(defn- all-joints [creature]
+  (distinct (mapcat #(.getJoints ^RigidBodyControl (.getControl ^Geometry % RigidBodyControl))
+                    (body/segments creature))))
+
+(defn- simulate
+  "Run `creature` on a floor for `frames`; return the largest joint gap
+  seen and the creature."
+  [creature frames & {:keys [setup] :or {setup #(world/set-gravity % earth)}}]
+  (let [worst (atom 0.0)
+        w (world/world (util/nodify [creature (floor)]) {} setup
+                       (fn [_ _] (doseq [j (all-joints creature)]
+                                   (swap! worst max (joint-gap j)))))]
+    (world/run-world! w frames)
+    @worst))
+
+(deftest the-code-worm-falls-and-holds-together
+  (let [c (doto (code-worm "{:type :hinge :limit [-0.7 0.7] :axis (Vector3f. 0 1 0)}"
+                           (Vector3f. 0 3 0))
+            (body/body!))
+        gap (simulate c 300)
+        [tail head] (body/segments c)]
+    (is (= 1 (count (all-joints c))))
+    (is (instance? HingeJoint (first (all-joints c))))
+    (testing "the joint's two ends stay within 1% of a segment's length (2) of each other"
+      (is (< gap 0.02)))
+    (testing "it landed: both segments rest on the floor"
+      (doseq [s [tail head]]
+        (is (< (Math/abs (- (.y (.getWorldTranslation s)) 0.25)) 0.05))))))
+
+(deftest hinges-keep-their-limits
+  ;; a cantilever: a static post, and a beam hinged to it that gravity
+  ;; pulls down; the hinge lets it droop by at most 0.3 radians
+  (let [c (creature "cantilever"
+                    [(segment "post" (Vector3f. -1.02 2 0) :mass 0)
+                     (segment "beam" (Vector3f. 1.02 2 0) :mass (float 5))]
+                    [(marker "elbow" (Vector3f. 0 2 0)
+                             "{:type :hinge :limit [-0.3 0.3] :axis (Vector3f. 0 1 0)}")])
+        _ (body/body! c)
+        hinge ^HingeJoint (first (all-joints c))
+        angles (atom [])
+        w (world/world (util/nodify [c]) {} #(world/set-gravity % earth)
+                       (fn [_ _] (swap! angles conj (.getHingeAngle hinge))))]
+    (world/run-world! w 300)
+    (testing "the beam swung down to its limit"
+      (is (> (apply max (map #(Math/abs (double %)) @angles)) 0.25)))
+    (testing "and never far past it"
+      (is (every? #(<= (Math/abs (double %)) 0.33) @angles)))))
+
+(deftest other-joint-kinds-hold
+  (doseq [[text kind] [["{:type :point}" SixDofJoint]
+                       ["{:type :cone :limit-xz 0.5 :limit-xy 0.5 :twist 0.2}" ConeJoint]]]
+    (let [c (doto (code-worm text (Vector3f. 0 3 0)) (body/body!))
+          gap (simulate c 300)]
+      (is (instance? kind (first (all-joints c))))
+      (is (< gap 0.02) text))))
+
+(defn- final-state [creature frames]
+  (simulate creature frames)
+  (vec (for [g (body/segments creature)
+             :let [t (.getWorldTranslation g) r (.getWorldRotation g)]]
+         [(.x t) (.y t) (.z t) (.getX r) (.getY r) (.getZ r) (.getW r)])))
+
+(deftest jointed-runs-repeat-to-the-bit
+  (let [make #(doto (code-worm "{:type :cone :limit-xz 0.5 :limit-xy 0.5 :twist 0.2}"
+                               (Vector3f. 0.1 3 -0.2))
+                (.setLocalRotation (doto (Quaternion.) (.fromAngles 0.3 0.2 0.1)))
+                (body/body!))]
+    (is (= (final-state (make) 240) (final-state (make) 240)))))
