@@ -1,0 +1,560 @@
+(ns cortex.blender.file
+  "Read the bytes of a .blend file into blocks and decode its structs
+  with the file's own SDNA: no offset is written down here, every one is
+  computed from the struct definitions the file carries."
+  (:require [clojure.string :as str])
+  (:import [java.nio ByteBuffer ByteOrder]
+           [java.io ByteArrayInputStream ByteArrayOutputStream InputStream]
+           [java.util TreeMap Map$Entry]
+           [java.util.zip GZIPInputStream]
+           [io.airlift.compress.zstd ZstdInputStream]))
+
+(set! *warn-on-reflection* true)
+
+(defn fail
+  "Throw an ex-info whose message begins with the file's name."
+  ([source msg] (fail source msg {}))
+  ([source msg data]
+   (throw (ex-info (str source ": " msg) (assoc data :file (str source))))))
+
+(def max-bytes
+  "The most bytes a decompressed file may have: Java arrays stop just
+  short of 2 GiB, and a third of the heap leaves room to work."
+  (long (min (- Integer/MAX_VALUE 64)
+             (quot (.maxMemory (Runtime/getRuntime)) 3))))
+
+(defn- drain
+  "All bytes of stream `in`, refusing to grow past `max-bytes`."
+  ^bytes [source ^InputStream in]
+  (let [out (ByteArrayOutputStream.)
+        buf (byte-array 65536)]
+    (loop []
+      (let [n (.read in buf)]
+        (when (pos? n)
+          (when (> (+ (.size out) n) max-bytes)
+            (fail source (str "decompresses to more than " max-bytes " bytes")))
+          (.write out buf 0 n)
+          (recur))))
+    (.toByteArray out)))
+
+(defn- magic?
+  "Does byte array `b` begin with the unsigned bytes `prefix`?"
+  [^bytes b prefix]
+  (and (>= (alength b) (count prefix))
+       (every? true? (map-indexed (fn [i p] (= (bit-and (aget b i) 0xff) p))
+                                  prefix))))
+
+(defn- u8 ^long [^bytes b ^long i] (bit-and (aget b i) 0xff))
+
+(defn- u32le ^long [^bytes b ^long i]
+  (bit-or (u8 b i) (bit-shift-left (u8 b (+ i 1)) 8)
+          (bit-shift-left (u8 b (+ i 2)) 16) (bit-shift-left (u8 b (+ i 3)) 24)))
+
+(defn zstd-frames
+  "The [start end] byte ranges of the data frames of zstd stream `b`,
+  leaving out skippable frames (Blender 3.0+ appends a seek table in
+  one, which the decoder refuses). Frame extents are found by walking
+  block headers, so a cut stream is noticed here."
+  [source ^bytes b]
+  (let [n (alength b)
+        need (fn [^long p ^long k what]
+               (when (> (+ p k) n)
+                 (fail source (str "zstd stream cut short in " what
+                                   " at byte " p " of " n))))]
+    (loop [p 0, frames []]
+      (if (>= p n)
+        frames
+        (do
+          (need p 4 "frame magic")
+          (let [magic (u32le b p)]
+            (cond
+              (= (bit-and magic 0xFFFFFFF0) 0x184D2A50)
+              (do (need p 8 "skippable frame")
+                  (let [size (u32le b (+ p 4))
+                        end (+ p 8 size)]
+                    (need p (+ 8 size) "skippable frame")
+                    (recur end frames)))
+
+              (= magic 0xFD2FB528)
+              (do
+                (need p 5 "frame header")
+                (let [fhd (u8 b (+ p 4))
+                      single (bit-test fhd 5)
+                      dict-size ([0 1 2 4] (bit-and fhd 3))
+                      fcs-flag (bit-shift-right fhd 6)
+                      fcs-size (case (int fcs-flag) 0 (if single 1 0) 1 2 2 4 3 8)
+                      checksum (if (bit-test fhd 2) 4 0)
+                      first-block (+ p 5 (if single 0 1) dict-size fcs-size)
+                      end (loop [q first-block]
+                            (need q 3 "block header")
+                            (let [h (bit-or (u8 b q) (bit-shift-left (u8 b (+ q 1)) 8)
+                                            (bit-shift-left (u8 b (+ q 2)) 16))
+                                  last? (bit-test h 0)
+                                  type (bit-and (bit-shift-right h 1) 3)
+                                  size (bit-shift-right h 3)
+                                  len (case (int type) 0 size 1 1 2 size
+                                            (fail source (str "zstd block of reserved type at byte " q)))
+                                  nq (+ q 3 len)]
+                              (need q (+ 3 len) "block")
+                              (if last? nq (recur nq))))]
+                  (need end checksum "checksum")
+                  (recur (+ end checksum) (conj frames [p (+ end checksum)]))))
+
+              :else
+              (fail source (str "not a zstd frame at byte " p)))))))))
+
+(defn decompress
+  "The plain bytes of a .blend file: gzip (Blender before 3.0) and zstd
+  (3.0 and later) are undone, anything else is returned as it is."
+  ^bytes [source ^bytes raw]
+  (cond
+    (magic? raw [0x1F 0x8B])
+    (drain source (GZIPInputStream. (ByteArrayInputStream. raw)))
+
+    (magic? raw [0x28 0xB5 0x2F 0xFD])
+    (let [out (ByteArrayOutputStream.)]
+      (doseq [[^long s ^long e] (zstd-frames source raw)]
+        (let [part (drain source (ZstdInputStream.
+                                  (ByteArrayInputStream. raw s (- e s))))]
+          (when (> (+ (.size out) (alength part)) max-bytes)
+            (fail source (str "decompresses to more than " max-bytes " bytes")))
+          (.write out part 0 (alength part))))
+      (.toByteArray out))
+
+    :else raw))
+
+(defn parse-header
+  "The file header: pointer size, byte order, version and the size of
+  the header and of each block header.
+  Before 5.0: `BLENDER` `_`|`-` (4|8-byte pointers) `v`|`V` (little|big
+  endian) and three digits, with 20 or 24-byte block headers.
+  5.0: `BLENDER17-01v0500`: header size, format 01 (8-byte pointers,
+  32-byte block headers with 64-bit lengths), byte order, four digits."
+  [source ^bytes b]
+  (let [n (alength b)
+        text (String. b 0 (int (min n 17)) "ISO-8859-1")]
+    (when-not (str/starts-with? text "BLENDER")
+      (fail source (if (zero? n) "empty file, not a .blend file"
+                       "not a .blend file (no BLENDER header)")))
+    (if-let [[_ hsize fmt endian version]
+             (re-matches #"BLENDER(\d\d)-(\d\d)([vV])(\d{4})" text)]
+      (do (when-not (and (= hsize "17") (= fmt "01"))
+            (fail source (str "unknown .blend header format " (pr-str text))))
+          {:header-size 17 :ptr-size 8 :little? (= endian "v")
+           :version (Long/parseLong version) :bhead :large :bhead-size 32})
+      (let [[_ ptr endian version] (re-matches #"BLENDER([_-])([vV])(\d{3}).*"
+                                               (subs text 0 (min 12 (count text))))]
+        (when-not version
+          (fail source (str "bad .blend header " (pr-str (subs text 0 (min 12 (count text)))))))
+        (let [ptr-size (if (= ptr "_") 4 8)]
+          {:header-size 12 :ptr-size ptr-size :little? (= endian "v")
+           :version (Long/parseLong version) :bhead :small
+           :bhead-size (+ 16 ptr-size)})))))
+
+(defn- code-string
+  "A block code: four bytes, trailing NULs dropped (`OB\\0\\0` -> \"OB\")."
+  [^ByteBuffer buf ^long pos]
+  (let [sb (StringBuilder.)]
+    (dotimes [i 4]
+      (let [c (bit-and (.get buf (int (+ pos i))) 0xff)]
+        (when-not (zero? c) (.append sb (char c)))))
+    (str sb)))
+
+(defn read-blocks
+  "Every block of the file up to `ENDB`, as maps of :code, :offset (of
+  the block's data), :len, :old (the pointer the block had in memory
+  when saved), :sdna and :count. Each length is checked against the
+  bytes that are actually there; each step moves forward, so the walk
+  ends within the file's size."
+  [source header ^ByteBuffer buf]
+  (let [limit (.limit buf)
+        {:keys [^long header-size ^long ptr-size bhead ^long bhead-size]} header]
+    (loop [pos header-size, blocks (transient [])]
+      (when (> (+ pos bhead-size) limit)
+        (fail source (str "truncated: block header at byte " pos
+                          " runs past the end (" limit " bytes); no ENDB block")))
+      (let [code (code-string buf pos)
+            [len old sdna cnt]
+            (if (= bhead :large)
+              [(.getLong buf (int (+ pos 16)))
+               (.getLong buf (int (+ pos 8)))
+               (bit-and (long (.getInt buf (int (+ pos 4)))) 0xFFFFFFFF)
+               (.getLong buf (int (+ pos 24)))]
+              [(long (.getInt buf (int (+ pos 4))))
+               (if (= ptr-size 8)
+                 (.getLong buf (int (+ pos 8)))
+                 (bit-and (long (.getInt buf (int (+ pos 8)))) 0xFFFFFFFF))
+               (long (.getInt buf (int (+ pos 8 ptr-size))))
+               (long (.getInt buf (int (+ pos 12 ptr-size))))])
+            start (+ pos bhead-size)
+            ^long len len]
+        (when (or (neg? len) (> len (- limit start)))
+          (fail source (str "block " (pr-str code) " at byte " pos " claims "
+                            len " bytes but only " (- limit start) " remain")
+                {:block code :offset pos}))
+        (let [block {:code code :offset start :len len :old old
+                     :sdna sdna :count cnt}]
+          (if (= code "ENDB")
+            (persistent! blocks)
+            (recur (+ start len) (conj! blocks block))))))))
+
+(defn- align4
+  "Round byte offset `p` up to a multiple of 4 counted from `base`."
+  ^long [^long base ^long p]
+  (+ base (bit-and (+ (- p base) 3) -4)))
+
+(defn parse-sdna
+  "The struct definitions in the DNA1 block: names, types, type
+  lengths and structs (type index plus [type name] index pairs).
+  Sections are `SDNA` then `NAME`, `TYPE`, `TLEN`, `STRC`, each
+  4-byte aligned; every count is checked against the block's bytes."
+  [source ^ByteBuffer buf {:keys [^long offset ^long len]}]
+  (let [end (+ offset len)
+        need (fn [^long p ^long k what]
+               (when (or (neg? k) (> (+ p k) end))
+                 (fail source (str "DNA1 block cut short reading " what))))
+        tag (fn [^long p t]
+              (need p 4 t)
+              (when-not (= (code-string buf p) t)
+                (fail source (str "DNA1 block lacks its " t " section"))))
+        int-at (fn ^long [^long p what] (need p 4 what) (.getInt buf (int p)))
+        short-at (fn ^long [^long p] (long (.getShort buf (int p))))
+        strings (fn [^long p ^long n what]
+                  (when (or (neg? n) (> n (- end p)))
+                    (fail source (str "DNA1 block claims " n " " what)))
+                  (loop [p p, i 0, out (transient [])]
+                    (if (= i n)
+                      [(persistent! out) p]
+                      (let [q (loop [q p]
+                                (need q 1 what)
+                                (if (zero? (.get buf (int q))) q (recur (inc q))))
+                            bs (byte-array (- q p))]
+                        (.get (.duplicate buf) (int p) bs)
+                        (recur (inc q) (inc i) (conj! out (String. bs "UTF-8")))))))
+        _ (tag offset "SDNA")
+        _ (tag (+ offset 4) "NAME")
+        [names p] (strings (+ offset 12) (int-at (+ offset 8) "names") "names")
+        p (align4 offset p)
+        _ (tag p "TYPE")
+        [types p] (strings (+ p 8) (int-at (+ p 4) "types") "types")
+        p (align4 offset p)
+        _ (tag p "TLEN")
+        ntypes (count types)
+        _ (need (+ p 4) (* 2 ntypes) "type lengths")
+        tlens (mapv #(short-at (+ p 4 (* 2 %))) (range ntypes))
+        p (align4 offset (+ p 4 (* 2 ntypes)))
+        _ (tag p "STRC")
+        nstructs (int-at (+ p 4) "structs")
+        _ (when (or (neg? nstructs) (> nstructs (quot (- end p) 4)))
+            (fail source (str "DNA1 block claims " nstructs " structs")))
+        structs (loop [q (+ p 8), i 0, out (transient [])]
+                  (if (= i nstructs)
+                    (persistent! out)
+                    (do (need q 4 "struct header")
+                        (let [t (short-at q)
+                              nf (short-at (+ q 2))]
+                          (need (+ q 4) (* 4 nf) "struct fields")
+                          (when-not (< -1 t ntypes)
+                            (fail source (str "struct " i " has bad type index " t)))
+                          (let [fields (mapv (fn [k]
+                                               (let [ft (short-at (+ q 4 (* 4 k)))
+                                                     fnm (short-at (+ q 6 (* 4 k)))]
+                                                 (when-not (and (< -1 ft ntypes)
+                                                                (< -1 fnm (count names)))
+                                                   (fail source (str "struct " (types t)
+                                                                     " has a bad field")))
+                                                 [ft fnm]))
+                                             (range nf))]
+                            (recur (+ q 4 (* 4 nf)) (inc i)
+                                   (conj! out {:type t :fields fields})))))))]
+    {:names names :types types :tlens tlens :structs structs}))
+
+(defn parse-name
+  "What a field name says: `*next` is a pointer, `mat[4][4]` an array
+  4 by 4, `(*func)()` a function pointer; the bare name is `next`,
+  `mat`, `func`."
+  [s]
+  (let [ptr (count (re-find #"^\(?\*+" s))
+        func? (str/starts-with? s "(*")
+        dims (mapv #(Long/parseLong %) (map second (re-seq #"\[(\d+)\]" s)))
+        base (-> s (str/replace #"\[.*$" "") (str/replace #"[*()]" ""))]
+    {:base base :ptr? (or (pos? ptr) func?) :func? func? :dims dims
+     :n (reduce * 1 dims)}))
+
+(defn- struct-layout*
+  "Lay out one SDNA struct: its name, size and fields in order, each
+  with :name, :type, :offset, :size and pointer/array facts. Offsets are
+  the sums of the sizes before, as makesdna lays them out (it demands
+  explicit padding, so there is none to guess)."
+  [{:keys [types tlens]} parsed struct-of-type ptr-size {:keys [type fields]}]
+  (let [fs (loop [[[ft fnm] & more] fields, off 0, out []]
+             (if (nil? ft)
+               out
+               (let [{:keys [ptr? ^long n] :as pn} @(parsed fnm)
+                     size (if ptr? (* (long ptr-size) n) (* (long (tlens ft)) n))
+                     f (assoc pn :name (:base pn) :type (types ft)
+                              :struct (when-not ptr? (struct-of-type ft))
+                              :tlen (tlens ft)
+                              :offset off :size size)]
+                 (recur more (+ off (long size)) (conj out f)))))]
+    {:name (types type)
+     :size (tlens type)
+     :fields fs
+     :by-name (into {} (map (juxt :name identity)) (reverse fs))}))
+
+(defn layouts
+  "The layout of every struct of the SDNA, each computed when first
+  asked for (a file defines around a thousand structs; a load needs a
+  few dozen)."
+  [{:keys [names structs] :as sdna} ptr-size]
+  (let [parsed (mapv #(delay (parse-name %)) names)
+        struct-of-type (into {} (map-indexed (fn [i s] [(:type s) i]) structs))]
+    (mapv #(delay (struct-layout* sdna parsed struct-of-type ptr-size %)) structs)))
+
+(defn layout
+  "The layout of struct number `i` of the file's SDNA, or nil."
+  [bf i]
+  (some-> (get (:layouts bf) i) deref))
+
+(defn- ptr-map
+  "A sorted map from old pointer to block, for floor look-ups."
+  ^TreeMap [blocks]
+  (let [m (TreeMap.)]
+    (doseq [b blocks :when (not= 0 (:old b))]
+      (.put m (:old b) b))
+    m))
+
+(defn- with-groups
+  "Tag each block with :group, the index of the ID block it belongs to:
+  an ID block (`OB`, `ME`, ...) starts a group and the `DATA` blocks
+  after it are its data. Blender reads pointers inside an ID's data
+  against that ID's blocks only, and since 5.0 old pointers are only
+  unique within such a group."
+  [blocks]
+  (loop [[b & more] blocks, g -1, i 0, out (transient [])]
+    (if (nil? b)
+      (persistent! out)
+      (let [g (if (= "DATA" (:code b)) g i)]
+        (recur more g (inc i) (conj! out (assoc b :group g)))))))
+
+(defn parse
+  "Parse the bytes of a .blend file: header, blocks, SDNA, struct
+  layouts and indexes of blocks by old pointer. `source` names the
+  file in every error."
+  [source ^bytes raw]
+  (let [bytes (decompress source raw)
+        header (parse-header source bytes)
+        buf (.order (ByteBuffer/wrap bytes)
+                    (if (:little? header) ByteOrder/LITTLE_ENDIAN ByteOrder/BIG_ENDIAN))
+        blocks (with-groups (read-blocks source header buf))
+        dna (or (some #(when (= (:code %) "DNA1") %) blocks)
+                (fail source "no DNA1 block (struct definitions) in the file"))
+        sdna (parse-sdna source buf dna)
+        olds (remove zero? (map :old blocks))]
+    (assoc header
+           :source (str source)
+           :buf buf
+           :size (alength bytes)
+           :blocks blocks
+           :sdna sdna
+           :layouts (layouts sdna (:ptr-size header))
+           :struct-index (into {} (map-indexed (fn [i s] [((:types sdna) (:type s)) i])
+                                               (:structs sdna)))
+           :ids (ptr-map (remove #(= "DATA" (:code %)) blocks))
+           :groups (into {} (for [[g bs] (group-by :group blocks)] [g (ptr-map bs)]))
+           :all (when (= (count olds) (count (distinct olds))) (ptr-map blocks)))))
+
+(defrecord Ptr [^long addr group])
+
+(defrecord Ref [bf layout ^long offset ^long end group])
+
+(defn struct-layout
+  "The layout of struct `type-name`, or nil when this file has none."
+  [bf type-name]
+  (when-let [i ((:struct-index bf) type-name)]
+    (layout bf i)))
+
+(defn ref-at
+  "A view of struct `layout` at byte `offset` of a block of `group`,
+  which must end by `end` (the end of that block), or nil when it does
+  not fit."
+  [bf layout offset end group]
+  (when (and layout (<= (+ (long offset) (long (:size layout))) (long end)) (>= (long offset) 0))
+    (->Ref bf layout offset end group)))
+
+(defn- lookup
+  "The block of sorted map `m` holding address `addr`, and the offset
+  of that byte in the buffer."
+  [^TreeMap m ^long addr]
+  (when m
+    (when-let [^Map$Entry e (.floorEntry m addr)]
+      (let [b (.getValue e)
+            d (- addr (long (:old b)))]
+        (when (and (>= d 0) (< d (max 1 (long (:len b)))))
+          [b (+ (long (:offset b)) d)])))))
+
+(defn block-of
+  "The block pointer `ptr` points into, with the buffer offset of the
+  pointed-at byte, or nil for NULL or a pointer into no block. Looks in
+  the pointer's own ID group, then among ID blocks, then (when old
+  pointers are unique in the file) anywhere."
+  [bf ptr]
+  (when ptr
+    (let [addr (long (:addr ptr))]
+      (or (lookup (get (:groups bf) (:group ptr)) addr)
+          (lookup (:ids bf) addr)
+          (lookup (:all bf) addr)))))
+
+(defn block-ref
+  "A view of the `i`th struct of a block, typed by the block's SDNA
+  index, or nil when it does not fit."
+  ([bf block] (block-ref bf block 0))
+  ([bf {:keys [sdna ^long offset ^long len group]} ^long i]
+   (let [lay (layout bf sdna)]
+     (when lay
+       (ref-at bf lay (+ offset (* i (long (:size lay)))) (+ offset len) group)))))
+
+(defn deref-ptr
+  "A view of the struct pointer `ptr` points at, typed as `type-name`
+  or, without one, by the SDNA index of the block it lands in; nil for
+  NULL, dangling pointers and structs that do not fit in their block."
+  ([bf ptr] (deref-ptr bf ptr nil))
+  ([bf ptr type-name]
+   (when-let [[b off] (block-of bf ptr)]
+     (let [lay (if type-name
+                 (struct-layout bf type-name)
+                 (layout bf (:sdna b)))]
+       (ref-at bf lay off (+ (long (:offset b)) (long (:len b))) (:group b))))))
+
+(defn pointed-bytes
+  "[offset available group] for the bytes pointer `ptr` points at:
+  where they start in the buffer, how many the block holds from there
+  on, and the block's ID group (for pointers stored there)."
+  [bf ptr]
+  (when-let [[b off] (block-of bf ptr)]
+    [off (- (+ (long (:offset b)) (long (:len b))) (long off)) (:group b)]))
+
+(defn- read-prim
+  "Read one value of SDNA primitive type `t` (size `size`) at `off`."
+  [^ByteBuffer buf t ^long size ^long off]
+  (let [o (int off)]
+    (case t
+      ("char" "int8_t") (long (.get buf o))
+      ("uchar" "uint8_t") (bit-and (long (.get buf o)) 0xff)
+      "bool" (not (zero? (.get buf o)))
+      ("short" "int16_t") (long (.getShort buf o))
+      ("ushort" "uint16_t") (bit-and (long (.getShort buf o)) 0xffff)
+      ("int" "int32_t") (long (.getInt buf o))
+      ("uint" "uint32_t") (bit-and (long (.getInt buf o)) 0xffffffff)
+      "float" (.getFloat buf o)
+      "double" (.getDouble buf o)
+      ("int64_t" "uint64_t") (.getLong buf o)
+      (case size
+        1 (long (.get buf o))
+        2 (long (.getShort buf o))
+        4 (long (.getInt buf o))
+        8 (.getLong buf o)
+        nil))))
+
+(defn read-ptr
+  "The pointer stored at `off` in a block of `group`, or nil for NULL.
+  4-byte pointers are read unsigned."
+  [bf ^long off group]
+  (let [^ByteBuffer buf (:buf bf)
+        addr (if (= 8 (:ptr-size bf))
+               (.getLong buf (int off))
+               (bit-and (long (.getInt buf (int off))) 0xffffffff))]
+    (when-not (zero? addr) (->Ptr addr group))))
+
+(defn c-string
+  "The NUL-terminated string in the `n` bytes at `off`, read as UTF-8."
+  [bf ^long off ^long n]
+  (let [^ByteBuffer buf (:buf bf)
+        len (loop [i 0]
+              (if (or (>= i n) (zero? (.get buf (int (+ off i))))) i (recur (inc i))))
+        bs (byte-array len)]
+    (.get (.duplicate buf) (int off) bs)
+    (String. bs "UTF-8")))
+
+(defn- shape
+  "Group flat values `xs` into nested vectors by array dims."
+  [xs dims]
+  (if (<= (count dims) 1)
+    (vec xs)
+    (mapv #(shape % (rest dims))
+          (partition (reduce * 1 (rest dims)) xs))))
+
+(defn field-info
+  "The layout entry of field `fname` of the struct `r` views, or nil."
+  [^Ref r fname]
+  (get-in (.layout r) [:by-name fname]))
+
+(defn has-field?
+  "Does the struct `r` views have field `fname` in this file's SDNA?"
+  [r fname]
+  (some? (field-info r fname)))
+
+(defn fget
+  "The value of field `fname` of the struct `r` views, decoded by the
+  SDNA: numbers, strings (char arrays), vectors (other arrays), Ptrs
+  (pointers; nil for NULL) or views of embedded structs. nil when the
+  struct has no such field in this file."
+  [^Ref r fname]
+  (when r
+    (when-let [{:keys [ptr? dims ^long n type tlen struct ^long offset]} (field-info r fname)]
+      (let [bf (.bf r)
+            off (+ (.offset r) offset)
+            ^long tlen tlen]
+        (cond
+          ptr? (if (empty? dims)
+                 (read-ptr bf off (.group r))
+                 (shape (map #(read-ptr bf (+ off (* (long %) (long (:ptr-size bf)))) (.group r))
+                             (range n))
+                        dims))
+          struct (let [lay (layout bf struct)]
+                   (if (empty? dims)
+                     (->Ref bf lay off (.end r) (.group r))
+                     (shape (map #(->Ref bf lay (+ off (* (long %) tlen)) (.end r) (.group r))
+                                 (range n))
+                            dims)))
+          (and (= type "char") (= 1 (count dims))) (c-string bf off n)
+          (empty? dims) (read-prim (:buf bf) type tlen off)
+          :else (shape (map #(read-prim (:buf bf) type tlen (+ off (* (long %) tlen)))
+                            (range n))
+                       dims))))))
+
+(defn fget-in
+  "Follow a path of field names through embedded structs."
+  [r path]
+  (reduce (fn [r k] (when r (fget r k))) r path))
+
+(defn field-offset
+  "The absolute byte offset of field `fname` of `r`, or nil."
+  [^Ref r fname]
+  (when-let [fi (field-info r fname)]
+    (+ (.offset r) (long (:offset fi)))))
+
+(defn list-seq
+  "The structs of a ListBase (`first`, then each one's `next`), typed by
+  their blocks or as `type-name`. Stops at NULL, at a dangling pointer
+  and at a link already seen, so cycles end; never longer than the
+  file has blocks."
+  ([bf listbase] (list-seq bf listbase nil))
+  ([bf listbase type-name]
+   (let [limit (count (:blocks bf))]
+     (loop [ptr (fget listbase "first"), seen #{}, out []]
+       (let [r (deref-ptr bf ptr type-name)]
+         (if (or (nil? r) (seen (.offset ^Ref r)) (>= (count out) limit))
+           out
+           (recur (fget r "next") (conj seen (.offset ^Ref r)) (conj out r))))))))
+
+(defn blocks-with-code
+  "The blocks whose code is `code` (\"OB\", \"ME\", \"SC\", ...)."
+  [bf code]
+  (filter #(= code (:code %)) (:blocks bf)))
+
+(defn id-name
+  "An ID's name without its two-letter type prefix (`OBCube` -> `Cube`)."
+  [r]
+  (let [n (or (fget-in r ["id" "name"]) "")]
+    (if (>= (count n) 2) (subs n 2) n)))

@@ -1,0 +1,335 @@
+(ns cortex.blender.mesh
+  "The base mesh of a Blender Mesh ID in any of the layouts Blender has
+  saved since 2.4x, as plain data: vertex positions and polygons, each
+  with its corners, material slot and smooth flag; then triangles."
+  (:require [cortex.blender.file :as f])
+  (:import [java.nio ByteBuffer]))
+
+(set! *warn-on-reflection* true)
+
+(defn- mesh-fail
+  "Throw an ex-info naming the file and the mesh."
+  [bf mesh msg]
+  (f/fail (:source bf) (str "mesh " (pr-str (f/id-name mesh)) ": " msg)
+          {:mesh (f/id-name mesh)}))
+
+(defn- checked-bytes
+  "The buffer offset of `n` elements of `size` bytes at pointer `ptr`,
+  after checking the block holds them; nil for a NULL pointer."
+  [bf mesh ptr n size what]
+  (when-let [[off avail] (f/pointed-bytes bf ptr)]
+    (when (or (neg? (long n)) (> (* (long n) (long size)) (long avail)))
+      (mesh-fail bf mesh (str what " needs " n " x " size " bytes, its block has " avail)))
+    off))
+
+(defn- read-ints
+  "`n` ints at pointer `ptr`, each `stride` bytes apart from `start`."
+  [bf mesh ptr n stride start what]
+  (when-let [off (checked-bytes bf mesh ptr n stride what)]
+    (let [^ByteBuffer buf (:buf bf)
+          out (int-array n)]
+      (dotimes [i n]
+        (aset out i (.getInt buf (int (+ (long off) (long start) (* i (long stride)))))))
+      out)))
+
+(defn- read-floats3
+  "`n` float triples at `ptr`, `stride` bytes apart from `start`, as a
+  flat float array of 3n."
+  [bf mesh ptr n stride start what]
+  (when-let [off (checked-bytes bf mesh ptr n stride what)]
+    (let [^ByteBuffer buf (:buf bf)
+          out (float-array (* 3 (long n)))]
+      (dotimes [i n]
+        (dotimes [k 3]
+          (aset out (+ (* 3 i) k)
+                (.getFloat buf (int (+ (long off) (long start) (* i (long stride)) (* 4 k)))))))
+      out)))
+
+(defn- read-small
+  "`n` integers of `width` bytes (1, 2 or 4) at `ptr`, `stride` apart."
+  [bf mesh ptr n stride start width what]
+  (when-let [off (checked-bytes bf mesh ptr n stride what)]
+    (let [^ByteBuffer buf (:buf bf)
+          out (int-array n)]
+      (dotimes [i n]
+        (let [o (int (+ (long off) (long start) (* i (long stride))))]
+          (aset out i (int (case (long width)
+                             1 (.get buf o)
+                             2 (.getShort buf o)
+                             (.getInt buf o))))))
+      out)))
+
+(defn- cd-layers
+  "The layers of CustomData `cd`: maps of :type, :name and :data."
+  [bf cd]
+  (let [n (long (or (f/fget cd "totlayer") 0))
+        lay (f/struct-layout bf "CustomDataLayer")]
+    (when-let [[off avail g] (and lay (pos? n) (f/pointed-bytes bf (f/fget cd "layers")))]
+      (let [size (long (:size lay))
+            n (min n (quot (long avail) (max 1 size)))]
+        (vec (for [i (range n)
+                   :let [r (f/ref-at bf lay (+ (long off) (* i size)) (+ (long off) (long avail)) g)]
+                   :when r]
+               {:type (f/fget r "type") :name (f/fget r "name") :data (f/fget r "data")}))))))
+
+(defn- storage-attributes
+  "The attributes of Blender 5.0's `Mesh.attribute_storage`, as maps of
+  :name, :domain (0 point, 1 edge, 2 face, 3 corner), :single? and
+  :data (the pointer to the values)."
+  [bf mesh]
+  (when-let [st (f/fget mesh "attribute_storage")]
+    (let [n (long (or (f/fget st "dna_attributes_num") 0))
+          lay (f/struct-layout bf "Attribute")]
+      (when-let [[off avail g] (and lay (pos? n) (f/pointed-bytes bf (f/fget st "dna_attributes")))]
+        (let [size (long (:size lay))
+              n (min n (quot (long avail) (max 1 size)))]
+          (vec (for [i (range n)
+                     :let [r (f/ref-at bf lay (+ (long off) (* i size)) (+ (long off) (long avail)) g)]
+                     :when r
+                     :let [single? (= 1 (f/fget r "storage_type"))
+                           holder (f/deref-ptr bf (f/fget r "data")
+                                               (if single? "AttributeSingle" "AttributeArray"))
+                           name (when-let [[o a] (f/pointed-bytes bf (f/fget r "name"))]
+                                  (f/c-string bf o (min 1024 (long a))))]]
+                 {:name name :domain (f/fget r "domain") :single? single?
+                  :data (f/fget holder "data")})))))))
+
+(defn- named-data
+  "The data pointer of the generic attribute `aname` on CustomData
+  `cd-name` (3.5-4.x) or in the attribute storage with `domain` (5.0),
+  as {:data ptr :single? bool}, or nil."
+  [bf mesh attrs cd-name aname domain]
+  (or (some #(when (and (= aname (:name %)) (= domain (:domain %))) %) attrs)
+      (some #(when (= aname (:name %)) {:data (:data %) :single? false})
+            (cd-layers bf (f/fget mesh cd-name)))))
+
+(defn- struct-array
+  "Pointer, stride and field offsets for a legacy struct array such as
+  MVert or MPoly: {:ptr :stride :offsets {field offset}}, or nil."
+  [bf ptr type-name fields]
+  (when-let [lay (f/struct-layout bf type-name)]
+    (when ptr
+      {:ptr ptr :stride (:size lay)
+       :fields (into {} (for [fl fields :let [fi (get-in lay [:by-name fl])] :when fi]
+                          [fl fi]))})))
+
+(defn- legacy-layer
+  "The data pointer of the legacy CustomData layer of `type` (0 MVert,
+  4 MFace, 25 MPoly, 26 MLoop) on `cd-name`, if the Mesh's own pointer
+  field is missing."
+  [bf mesh cd-name type]
+  (some #(when (= type (:type %)) (:data %)) (cd-layers bf (f/fget mesh cd-name))))
+
+(defn- field-ints
+  "Read field `fl` (an int, short or char) of every element of struct
+  array `sa`, `n` long."
+  [bf mesh sa fl n what]
+  (when-let [fi (get-in sa [:fields fl])]
+    (read-small bf mesh (:ptr sa) n (:stride sa) (:offset fi) (:tlen fi) what)))
+
+(defn positions
+  "Vertex positions of `mesh` as a flat float array (x y z ...), from
+  the 5.0 attribute storage, the `position` attribute (3.5-4.x) or the
+  MVert array (2.4x-3.4)."
+  [bf mesh attrs]
+  (let [n (long (or (f/fget mesh "totvert") 0))]
+    (if-let [{:keys [data]} (named-data bf mesh attrs "vdata" "position" 0)]
+      (read-floats3 bf mesh data n 12 0 "position")
+      (let [ptr (or (f/fget mesh "mvert") (legacy-layer bf mesh "vdata" 0))
+            sa (struct-array bf ptr "MVert" ["co"])]
+        (if (and sa (get-in sa [:fields "co"]))
+          (read-floats3 bf mesh ptr n (:stride sa) (get-in sa [:fields "co" :offset]) "MVert")
+          (float-array 0))))))
+
+(defn- bools
+  "A boolean attribute (one byte per element), as a boolean array, or
+  nil when absent; a single value repeated for 5.0's single storage."
+  [bf mesh attrs cd-name aname domain n]
+  (when-let [{:keys [data single?]} (named-data bf mesh attrs cd-name aname domain)]
+    (if single?
+      (when-let [v (read-small bf mesh data 1 1 0 1 aname)]
+        (boolean-array (repeat n (not (zero? (aget ^ints v 0))))))
+      (when-let [v (read-small bf mesh data n 1 0 1 aname)]
+        (boolean-array (map #(not (zero? (long %))) v))))))
+
+(defn- ints-attr
+  "An int attribute, or nil when absent."
+  [bf mesh attrs cd-name aname domain n]
+  (when-let [{:keys [data single?]} (named-data bf mesh attrs cd-name aname domain)]
+    (if single?
+      (when-let [v (read-ints bf mesh data 1 4 0 aname)]
+        (int-array (repeat n (aget ^ints v 0))))
+      (read-ints bf mesh data n 4 0 aname))))
+
+(defn- polys-from-offsets
+  "Faces from `poly_offset_indices` + `.corner_vert` (3.6 and later)."
+  [bf mesh attrs]
+  (let [np (long (or (f/fget mesh "totpoly") 0))
+        nl (long (or (f/fget mesh "totloop") 0))
+        offsets (read-ints bf mesh (f/fget mesh "poly_offset_indices") (inc np) 4 0
+                           "face offsets")
+        corners (ints-attr bf mesh attrs "ldata" ".corner_vert" 3 nl)
+        mats (ints-attr bf mesh attrs "pdata" "material_index" 2 np)
+        sharp (bools bf mesh attrs "pdata" "sharp_face" 2 np)]
+    (when (and offsets corners)
+      {:starts (int-array (take np offsets))
+       :counts (int-array (map - (rest offsets) offsets))
+       :corners corners
+       :mats (or mats (int-array np))
+       :smooth (if sharp (boolean-array (map not sharp)) (boolean-array np true))})))
+
+(defn- polys-from-mpoly
+  "Faces from MPoly + MLoop (2.63-3.5), or MPoly with `.corner_vert`."
+  [bf mesh attrs]
+  (let [np (long (or (f/fget mesh "totpoly") 0))
+        nl (long (or (f/fget mesh "totloop") 0))
+        pptr (or (f/fget mesh "mpoly") (legacy-layer bf mesh "pdata" 25))
+        lptr (or (f/fget mesh "mloop") (legacy-layer bf mesh "ldata" 26))
+        mp (struct-array bf pptr "MPoly" ["loopstart" "totloop" "mat_nr" "flag"])
+        ml (struct-array bf lptr "MLoop" ["v"])]
+    (when (and mp (pos? np))
+      (let [starts (field-ints bf mesh mp "loopstart" np "MPoly")
+            counts (field-ints bf mesh mp "totloop" np "MPoly")
+            corners (or (ints-attr bf mesh attrs "ldata" ".corner_vert" 3 nl)
+                        (field-ints bf mesh ml "v" nl "MLoop"))
+            mats (or (ints-attr bf mesh attrs "pdata" "material_index" 2 np)
+                     (field-ints bf mesh mp "mat_nr" np "MPoly")
+                     (int-array np))
+            flags (field-ints bf mesh mp "flag" np "MPoly")
+            sharp (bools bf mesh attrs "pdata" "sharp_face" 2 np)]
+        (when (and starts counts corners)
+          {:starts starts :counts counts :corners corners :mats mats
+           :smooth (cond sharp (boolean-array (map not sharp))
+                         flags (boolean-array (map #(odd? (long %)) flags))
+                         :else (boolean-array np))})))))
+
+(defn- polys-from-mface
+  "Faces from MFace (2.4x-2.62): triangles and quads, `v4` 0 for a
+  triangle."
+  [bf mesh]
+  (let [nf (long (or (f/fget mesh "totface") 0))
+        ptr (or (f/fget mesh "mface") (legacy-layer bf mesh "fdata" 4))
+        mf (struct-array bf ptr "MFace" ["v1" "v2" "v3" "v4" "mat_nr" "flag"])]
+    (when (and mf (pos? nf))
+      (let [[v1 v2 v3 v4] (map #(field-ints bf mesh mf % nf "MFace") ["v1" "v2" "v3" "v4"])
+            mats (or (field-ints bf mesh mf "mat_nr" nf "MFace") (int-array nf))
+            flags (field-ints bf mesh mf "flag" nf "MFace")]
+        (when (and v1 v2 v3 v4)
+          (let [counts (int-array (map #(if (zero? (long %)) 3 4) v4))
+                starts (int-array (reductions + 0 (butlast counts)))
+                corners (int-array (mapcat (fn [a b c d n] (if (= 3 n) [a b c] [a b c d]))
+                                           v1 v2 v3 v4 counts))]
+            {:starts starts :counts counts :corners corners :mats mats
+             :smooth (if flags (boolean-array (map #(odd? (long %)) flags))
+                         (boolean-array nf))}))))))
+
+(defn- check-polys
+  "Every face must lie within the corner array and every corner name a
+  vertex; a malformed file fails here, not later in an array index."
+  [bf mesh {:keys [^ints starts ^ints counts ^ints corners] :as polys} nverts]
+  (let [nc (alength corners)
+        nverts (long nverts)]
+    (dotimes [i (alength starts)]
+      (let [s (aget starts i) n (aget counts i)]
+        (when (or (neg? s) (neg? n) (> (+ s n) nc))
+          (mesh-fail bf mesh (str "face " i " has corners " s ".." (+ s n)
+                                  " of " nc)))))
+    (dotimes [i nc]
+      (let [v (aget corners i)]
+        (when (or (neg? v) (>= v nverts))
+          (mesh-fail bf mesh (str "corner " i " names vertex " v " of " nverts)))))
+    polys))
+
+(defn mesh-data
+  "The base mesh of the Mesh struct `mesh`: {:name, :positions (flat
+  floats, Blender coordinates), :starts :counts :corners (faces as runs
+  of vertex indices), :mats (material slot per face), :smooth (per
+  face)}. Faces come from the newest layout the file has."
+  [bf mesh]
+  (let [attrs (storage-attributes bf mesh)
+        pos (positions bf mesh attrs)
+        nverts (quot (alength ^floats pos) 3)
+        polys (or (when (pos? (long (or (f/fget mesh "totpoly") 0)))
+                    (or (when (f/has-field? mesh "poly_offset_indices")
+                          (polys-from-offsets bf mesh attrs))
+                        (polys-from-mpoly bf mesh attrs)))
+                  (polys-from-mface bf mesh)
+                  {:starts (int-array 0) :counts (int-array 0) :corners (int-array 0)
+                   :mats (int-array 0) :smooth (boolean-array 0)})]
+    (assoc (check-polys bf mesh polys nverts)
+           :name (f/id-name mesh)
+           :positions pos)))
+
+(defn vertex
+  "Vertex `i` of flat float array `pos` as a double array."
+  ^doubles [^floats pos ^long i]
+  (double-array [(aget pos (* 3 i)) (aget pos (+ 1 (* 3 i))) (aget pos (+ 2 (* 3 i)))]))
+
+(defn newell-normal
+  "The (unnormalised) Newell normal of the polygon through `pts`: its
+  length is twice the area, its direction the side the corners wind
+  counter-clockwise around."
+  [pts]
+  (let [n (count pts)]
+    (loop [i 0 x 0.0 y 0.0 z 0.0]
+      (if (= i n)
+        [x y z]
+        (let [^doubles a (nth pts i) ^doubles b (nth pts (mod (inc i) n))]
+          (recur (inc i)
+                 (+ x (* (- (aget a 1) (aget b 1)) (+ (aget a 2) (aget b 2))))
+                 (+ y (* (- (aget a 2) (aget b 2)) (+ (aget a 0) (aget b 0))))
+                 (+ z (* (- (aget a 0) (aget b 0)) (+ (aget a 1) (aget b 1))))))))))
+
+(defn- cross2 ^double [[ax ay] [bx by] [cx cy]]
+  (- (* (- (double bx) ax) (- (double cy) ay)) (* (- (double by) ay) (- (double cx) ax))))
+
+(defn- inside?
+  "Is 2-D point p inside or on triangle a b c (counter-clockwise)?"
+  [p a b c]
+  (and (>= (cross2 a b p) -1e-12) (>= (cross2 b c p) -1e-12) (>= (cross2 c a p) -1e-12)))
+
+(defn triangulate
+  "Triangles of a polygon with corners `pts` (3-D double arrays), as
+  index triples into `pts` keeping the polygon's winding. Convex or
+  not, by ear clipping in the plane the polygon faces (Blender does the
+  same); a polygon too degenerate for any ear, or of more than 1000
+  corners, is fanned. Always n-2 triangles for n corners."
+  [pts]
+  (let [n (count pts)]
+    (cond
+      (< n 3) []
+      (= n 3) [[0 1 2]]
+      (> n 1000) (mapv (fn [i] [0 i (inc i)]) (range 1 (dec n)))
+      :else
+      (let [[nx ny nz] (map #(Math/abs (double %)) (newell-normal pts))
+            [u v] (cond (and (>= nx ny) (>= nx nz)) [1 2]
+                        (>= ny nz) [2 0]
+                        :else [0 1])
+            p2 (mapv (fn [^doubles p] [(aget p u) (aget p v)]) pts)
+            area (reduce + (map (fn [i] (let [[ax ay] (p2 i) [bx by] (p2 (mod (inc i) n))]
+                                          (- (* ax by) (* bx ay))))
+                                (range n)))
+            p2 (if (neg? area) (mapv (fn [[a b]] [b a]) p2) p2)]
+        (loop [ring (vec (range n)) out []]
+          (let [m (count ring)]
+            (if (= m 3)
+              (conj out ring)
+              (let [ear (some (fn [k]
+                                (let [a (ring (mod (dec k) m)) b (ring k) c (ring (mod (inc k) m))
+                                      pa (p2 a) pb (p2 b) pc (p2 c)]
+                                  (when (and (> (cross2 pa pb pc) 1e-12)
+                                             (not-any? #(and (not= % a) (not= % b) (not= % c)
+                                                             (inside? (p2 %) pa pb pc))
+                                                       ring))
+                                    k)))
+                              (range m))]
+                (if ear
+                  (recur (vec (concat (subvec ring 0 ear) (subvec ring (inc ear))))
+                         (conj out [(ring (mod (dec ear) m)) (ring ear) (ring (mod (inc ear) m))]))
+                  (into out (map (fn [i] [(ring 0) (ring i) (ring (inc i))]) (range 1 (dec m)))))))))))))
+
+(defn triangle-count
+  "How many triangles the faces of mesh data `md` make: n-2 per face of
+  n >= 3 corners."
+  [{:keys [^ints counts]}]
+  (reduce + (map #(max 0 (- (long %) 2)) counts)))
