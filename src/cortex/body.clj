@@ -107,26 +107,92 @@
   [^Spatial s]
   (some? (.getControl s RigidBodyControl)))
 
+(defn- corners
+  "The lowest and highest corners, [x y z] each, of `geom`'s world bound."
+  [^Geometry geom]
+  (let [b (.getWorldBound geom)
+        c (.getCenter b)
+        [ex ey ez] (if (instance? BoundingBox b)
+                     [(.getXExtent ^BoundingBox b) (.getYExtent ^BoundingBox b)
+                      (.getZExtent ^BoundingBox b)]
+                     (repeat 3 (.getRadius ^com.jme3.bounding.BoundingSphere b)))]
+    [[(- (.x c) ex) (- (.y c) ey) (- (.z c) ez)]
+     [(+ (.x c) ex) (+ (.y c) ey) (+ (.z c) ez)]]))
+
+(def ^:private max-cells-per-segment
+  "A segment whose bound covers more grid cells than this is checked
+  for every joint instead of being put in the grid."
+  64)
+
+(defn- cell-range
+  "The grid cells, as [i j k], that the box from `lo` to `hi` covers."
+  [cell lo hi]
+  (let [[[i0 j0 k0] [i1 j1 k1]] (for [corner [lo hi]]
+                                  (map #(long (Math/floor (/ (double %) cell))) corner))]
+    (for [i (range i0 (inc i1)) j (range j0 (inc j1)) k (range k0 (inc k1))]
+      [i j k])))
+
+(defn- cell-count
+  [cell lo hi]
+  (reduce * (map #(inc (- (long (Math/floor (/ (double %2) cell)))
+                          (long (Math/floor (/ (double %1) cell)))))
+                 lo hi)))
+
+(defn segment-index
+  "The physical segments of `parts` indexed by where they are: each
+  one's world bounds, and a grid of cells the size of a typical segment
+  listing the segments that reach into each cell. The joint search asks
+  the index for the segments near a point instead of testing every
+  segment of the creature, which keeps building a body of n segments
+  close to linear in n."
+  [^Node parts]
+  (let [items (vec (for [g (segments parts) :when (physical? g)]
+                     (let [[lo hi] (corners g)] {:geom g :lo lo :hi hi})))
+        sizes (sort (for [{:keys [lo hi]} items] (apply max (map - hi lo))))
+        cell (max 1e-3 (if (seq sizes) (nth sizes (quot (count sizes) 2)) 1.0))
+        {big true small false} (group-by #(let [{:keys [lo hi]} (items %)]
+                                            (> (cell-count cell lo hi) max-cells-per-segment))
+                                         (range (count items)))
+        grid (reduce (fn [grid i]
+                       (let [{:keys [lo hi]} (items i)]
+                         (reduce #(update %1 %2 (fnil conj []) i) grid (cell-range cell lo hi))))
+                     {} small)]
+    {:items items :cell cell :grid grid :big (vec big)
+     :lo (if (seq items) (apply map min (map :lo items)) [0 0 0])
+     :hi (if (seq items) (apply map max (map :hi items)) [0 0 0])}))
+
+(defn- overlaps?
+  [lo hi lo' hi']
+  (every? true? (map #(and (<= %1 %4) (<= %3 %2)) lo hi lo' hi')))
+
+(defn- nearby
+  "The items of `index` whose bounds meet the box from `lo` to `hi`."
+  [{:keys [items cell grid big]} lo hi]
+  (let [candidates (if (> (cell-count cell lo hi) (count items))
+                     (range (count items))
+                     (distinct (concat (mapcat grid (cell-range cell lo hi)) big)))]
+    (for [i (sort candidates)
+          :let [item (items i)]
+          :when (overlaps? lo hi (:lo item) (:hi item))]
+      item)))
+
 (defn- touching
-  "The physical Geometries of `parts` whose triangles meet a cube of
+  "The physical segments in `index` whose triangles meet a cube of
   half-width `radius` centred on `center`."
-  [^Node parts ^Vector3f center radius]
-  (let [results (CollisionResults.)]
-    (.collideWith parts (BoundingBox. center (float radius) (float radius) (float radius))
-                  results)
-    (->> (iterator-seq (.iterator results))
-         (map #(.getGeometry ^CollisionResult %))
-         (filter physical?)
-         distinct)))
+  [index ^Vector3f center radius]
+  (let [c [(.x center) (.y center) (.z center)]
+        cube (BoundingBox. center (float radius) (float radius) (float radius))]
+    (for [{:keys [^Geometry geom]} (nearby index (map #(- % radius) c) (map #(+ % radius) c))
+          :when (pos? (.collideWith geom cube (CollisionResults.)))]
+      geom)))
 
 (defn- reach
-  "How far from `center` the furthest corner of `parts`' bounds is: once
-  the cube is that big it holds everything there is."
-  [^Node parts ^Vector3f center]
-  (let [^BoundingBox b (.getWorldBound parts)
-        c (.getCenter b)]
-    (+ (.distance center c)
-       (.length (Vector3f. (.getXExtent b) (.getYExtent b) (.getZExtent b))))))
+  "How far from `center` the furthest corner of the indexed segments'
+  bounds is: once the cube is that big it holds everything there is."
+  [{:keys [lo hi]} ^Vector3f center]
+  (let [c [(.x center) (.y center) (.z center)]]
+    (Math/sqrt (reduce + (map #(let [d (max (Math/abs (- %1 %2)) (Math/abs (- %1 %3)))] (* d d))
+                              c lo hi)))))
 
 (defn joint-frame-position
   "Where `target` sits as seen from `joint`: its offset in the joint's
@@ -136,18 +202,13 @@
    (.mult (.inverse (.getWorldRotation joint))
           (.subtract (.getWorldTranslation target) (.getWorldTranslation joint)))))
 
-(defn joint-targets
-  "The two physical segments of `parts` closest to `joint`, found by
-  growing a cube around the joint from 0.01 by doubling until it touches
-  two of them, then closing in on the smallest such cube. They are
-  ordered by where they lie in the joint's frame (in Blender's axes):
-  the one with the smaller x + y + z first. Call after `physical!`.
-  When even a cube holding the whole creature finds fewer than two, the
-  error names the joint."
-  [^Node parts ^Spatial joint]
+(defn targets-near
+  "The two physical segments in `index` (see `segment-index`) closest
+  to `joint`, ordered as `joint-targets` says."
+  [index ^Spatial joint]
   (let [center (.getWorldTranslation joint)
-        limit (* 2 (max 0.01 (reach parts center)))
-        found (fn [r] (touching parts center r))
+        limit (* 2 (max 0.01 (reach index center)))
+        found (fn [r] (touching index center r))
         [lo hi] (loop [r 0.01]
                   (cond (>= (count (found r)) 2) [(/ r 2) r]
                         (> r limit)
@@ -166,6 +227,18 @@
                   (recur mid hi (inc i))))))
         pair (take 2 (sort-by #(.getName ^Spatial %) (found r)))]
     (sort-by #(.dot (Vector3f. 1 1 1) (joint-frame-position joint %)) pair)))
+
+(defn joint-targets
+  "The two physical segments of `parts` closest to `joint`, found by
+  growing a cube around the joint from 0.01 by doubling until it touches
+  two of them, then closing in on the smallest such cube. They are
+  ordered by where they lie in the joint's frame (in Blender's axes):
+  the one with the smaller x + y + z first. Call after `physical!`.
+  When even a cube holding the whole creature finds fewer than two, the
+  error names the joint."
+  [^Node parts ^Spatial joint]
+  (.updateGeometricState parts)
+  (targets-near (segment-index parts) joint))
 
 (def ^:private constants
   {'Math/PI Math/PI, 'java.lang.Math/PI Math/PI,
@@ -352,13 +425,14 @@
   describes. Call after `physical!`. Returns the creature."
   [^Node creature]
   (.updateGeometricState creature)
-  (doseq [joint (joints creature)]
-    (try
-      (let [[obj-a obj-b] (joint-targets creature joint)]
-        (connect obj-a obj-b joint))
-      (catch clojure.lang.ExceptionInfo e
-        (throw (ex-info (str "creature " (pr-str (.getName creature)) ", " (ex-message e))
-                        (assoc (ex-data e) :creature (.getName creature)) e)))))
+  (let [index (segment-index creature)]
+    (doseq [joint (joints creature)]
+      (try
+        (let [[obj-a obj-b] (targets-near index joint)]
+          (connect obj-a obj-b joint))
+        (catch clojure.lang.ExceptionInfo e
+          (throw (ex-info (str "creature " (pr-str (.getName creature)) ", " (ex-message e))
+                          (assoc (ex-data e) :creature (.getName creature)) e))))))
   creature)
 
 (defn body!

@@ -100,6 +100,21 @@
     (testing "ordered by world position: Blender's (1,1,1) weighs jME z by -1"
       (is (> (.z (.getWorldTranslation a)) (.z (.getWorldTranslation b)))))))
 
+(deftest every-joint-of-a-long-chain-finds-its-neighbours
+  ;; forty segments in a row, 0.04 apart, lying on a huge slab (kept out
+  ;; of the index's grid because of its size) that every joint is near
+  (let [n 40
+        links (for [i (range n)] (segment (str "link-" i) (Vector3f. (* i 2.04) 0.3 0)))
+        slab (segment "slab" (Vector3f. 40 -5.03 0) :half [200 5 200])
+        markers (for [i (range (dec n))]
+                  (marker (str "j" i) (Vector3f. (+ 1.02 (* i 2.04)) 0.3 0) "{:type :point}"))
+        c (doto (creature "chain" (cons slab links) markers) (body/physical!))
+        index (body/segment-index c)]
+    (is (= 1 (count (:big index))))
+    (doseq [[i j] (map-indexed vector (body/joints c))]
+      (is (= [(str "link-" i) (str "link-" (inc i))] (names (body/targets-near index j))))
+      (is (= (names (body/joint-targets c j)) (names (body/targets-near index j)))))))
+
 (deftest a-joint-needs-two-segments
   (let [c (doto (creature "lonely" [(segment "only" (Vector3f. -1.02 0 0))]
                           [(marker "j" Vector3f/ZERO "{:type :point}")])
