@@ -1,17 +1,16 @@
 (ns cortex.sense
   "What senses share: finding the marker nodes a creature's designer
   placed in Blender, and reading the data attached to them."
-  (:import (com.jme3.scene Geometry Node Spatial)))
+  (:require [cortex.blender :as blender])
+  (:import (com.jme3.scene Node)))
 
-(defn meta-data
-  "The custom property `key` that Blender gave the object `spatial`
-  stands for, or nil. Asked of a mesh's Geometry, it answers for the
-  object that holds the Geometry."
-  [^Spatial spatial ^String key]
-  (let [value (.getUserData spatial key)]
-    (if (and (nil? value) (instance? Geometry spatial) (.getParent spatial))
-      (.getUserData (.getParent spatial) key)
-      value)))
+(def ^{:doc "The custom property `key` that Blender gave the object
+  `spatial` stands for, or nil; asked of a mesh's Geometry, it answers
+  for the object holding it. (The loader owns the convention; this is
+  cortex.blender/meta-data.)"
+       :arglists '([spatial key])}
+  meta-data
+  blender/meta-data)
 
 (defn sense-nodes
   "A function of a creature that returns the children of the creature's

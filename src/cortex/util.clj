@@ -2,6 +2,7 @@
   "Small helpers the rest of cortex leans on: walking scene graphs,
   making simple physical shapes, lights, coordinate changes between
   Blender and jMonkeyEngine, and printing from jME's thread."
+  (:require [cortex.blender :as blender])
   (:import (com.jme3.app SimpleApplication)
            (com.jme3.app.state AbstractAppState)
            (com.jme3.asset AssetManager DesktopAssetManager)
@@ -70,6 +71,13 @@
   (JmeSystem/newAssetManager
    (.getResource (.getContextClassLoader (Thread/currentThread))
                  "com/jme3/asset/Desktop.cfg")))
+
+(def ^{:doc "Load a .blend file as a jME Node: an asset name such as
+  \"Models/test-creature/worm.blend\" (under assets/ or on the
+  classpath) or a file's path. See cortex.blender/load-blender-model."
+       :arglists '([model] [asset-manager model])}
+  load-blender-model
+  blender/load-blender-model)
 
 (def ^:private shared-assets
   "One AssetManager for making materials outside any running world."
