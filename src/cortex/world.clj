@@ -146,9 +146,13 @@
   has ended. A world without a fixed-step timer gets a 60 fps
   RatchetTimer, so that runs repeat exactly. Throws an ex-info if the
   world failed, or did not finish within :timeout-ms (default ten
-  minutes). Returns the world."
+  minutes). :context-type, a JmeContext$Type, replaces the null
+  renderer with another context: cortex.render passes OffscreenSurface
+  to draw real frames without a window. Returns the world."
   ([world frames] (run-world! world frames {}))
-  ([^SimpleApplication world frames {:keys [timeout-ms] :or {timeout-ms 600000}}]
+  ([^SimpleApplication world frames {:keys [timeout-ms context-type]
+                                     :or {timeout-ms 600000
+                                          context-type JmeContext$Type/Headless}}]
    (when-not (pos-int? frames)
      (throw (ex-info (str "frames must be a positive integer, not " (pr-str frames))
                      {:frames frames})))
@@ -158,7 +162,7 @@
        (.setTimer world (RatchetTimer. 60)))
      ;; jME's null context throttles a non-positive rate to 60 fps
      (.setFrameRate ^AppSettings (:settings @world) Integer/MAX_VALUE)
-     (.start world JmeContext$Type/Headless)
+     (.start world ^JmeContext$Type context-type)
      (let [finished? (deref done timeout-ms false)
            ^Thread thread (:thread @world)]
        (when-not finished?
