@@ -88,12 +88,18 @@
 
 (defonce ^:private shared-manager (delay (asset-manager)))
 
+(defn default-asset-manager
+  "The asset manager `load-blender-model` uses when given none, made on
+  first use."
+  ^AssetManager []
+  @shared-manager)
+
 (defn load-blender-model
   "Load a Blender model as a jME Node. `model` is an asset name (such as
   \"Models/test-creature/worm.blend\", found on the classpath or under
   assets/) or the path of a .blend file. Errors are ex-info naming the
   file."
-  ([model] (load-blender-model @shared-manager model))
+  ([model] (load-blender-model (default-asset-manager) model))
   ([^AssetManager am model]
    (let [f (io/file (str model))]
      (if (.isFile f)

@@ -288,45 +288,75 @@
   [p a b c]
   (and (>= (cross2 a b p) -1e-12) (>= (cross2 b c p) -1e-12) (>= (cross2 c a p) -1e-12)))
 
+(defn- ring-2d
+  "The corners `pts` projected onto the plane the polygon faces (the
+  Newell normal's largest axis dropped), turned so they wind
+  counter-clockwise."
+  [pts]
+  (let [[nx ny nz] (map #(Math/abs (double %)) (newell-normal pts))
+        [u v] (cond (and (>= nx ny) (>= nx nz)) [1 2]
+                    (>= ny nz) [2 0]
+                    :else [0 1])
+        p2 (mapv (fn [^doubles p] [(aget p u) (aget p v)]) pts)
+        n (count pts)
+        area (reduce + (map (fn [i] (let [[ax ay] (p2 i) [bx by] (p2 (mod (inc i) n))]
+                                      (- (* (double ax) (double by)) (* (double bx) (double ay)))))
+                            (range n)))]
+    (if (neg? area) (mapv (fn [[a b]] [b a]) p2) p2)))
+
+(defn- convex?
+  "Does every corner of 2-D ring `p2` turn left (or go straight)?"
+  [p2]
+  (let [n (count p2)]
+    (every? #(>= (cross2 (p2 %) (p2 (mod (inc %) n)) (p2 (mod (+ 2 %) n))) -1e-12)
+            (range n))))
+
+(defn- fan
+  "Triangles fanning from the first of corners `ring`."
+  [ring]
+  (mapv (fn [i] [(ring 0) (ring i) (ring (inc i))]) (range 1 (dec (count ring)))))
+
+(defn- ear-clip
+  "Triangles of counter-clockwise 2-D ring `p2` by ear clipping: cut
+  off a convex corner whose triangle holds no reflex corner, repeat.
+  Fans what is left if no ear is found (a degenerate polygon)."
+  [p2]
+  (loop [ring (vec (range (count p2))) out []]
+    (let [m (count ring)]
+      (if (= m 3)
+        (conj out ring)
+        (let [turn (fn [k] (cross2 (p2 (ring (mod (dec k) m))) (p2 (ring k))
+                                   (p2 (ring (mod (inc k) m)))))
+              reflex (filterv #(<= (double (turn %)) 1e-12) (range m))
+              ear (some (fn [k]
+                          (let [a (ring (mod (dec k) m)) b (ring k) c (ring (mod (inc k) m))]
+                            (when (and (> (double (turn k)) 1e-12)
+                                       (not-any? #(let [r (ring %)]
+                                                    (and (not= r a) (not= r b) (not= r c)
+                                                         (inside? (p2 r) (p2 a) (p2 b) (p2 c))))
+                                                 reflex))
+                              k)))
+                        (range m))]
+          (if ear
+            (recur (vec (concat (subvec ring 0 ear) (subvec ring (inc ear))))
+                   (conj out [(ring (mod (dec ear) m)) (ring ear) (ring (mod (inc ear) m))]))
+            (into out (fan ring))))))))
+
 (defn triangulate
   "Triangles of a polygon with corners `pts` (3-D double arrays), as
-  index triples into `pts` keeping the polygon's winding. Convex or
-  not, by ear clipping in the plane the polygon faces (Blender does the
-  same); a polygon too degenerate for any ear, or of more than 1000
-  corners, is fanned. Always n-2 triangles for n corners."
+  index triples into `pts` keeping the polygon's winding: convex
+  polygons are fanned, concave ones of up to 256 corners ear-clipped
+  in the plane they face (as Blender's polyfill does), bigger ones
+  fanned to bound the time. Always n-2 triangles for n corners."
   [pts]
   (let [n (count pts)]
     (cond
       (< n 3) []
       (= n 3) [[0 1 2]]
-      (> n 1000) (mapv (fn [i] [0 i (inc i)]) (range 1 (dec n)))
-      :else
-      (let [[nx ny nz] (map #(Math/abs (double %)) (newell-normal pts))
-            [u v] (cond (and (>= nx ny) (>= nx nz)) [1 2]
-                        (>= ny nz) [2 0]
-                        :else [0 1])
-            p2 (mapv (fn [^doubles p] [(aget p u) (aget p v)]) pts)
-            area (reduce + (map (fn [i] (let [[ax ay] (p2 i) [bx by] (p2 (mod (inc i) n))]
-                                          (- (* ax by) (* bx ay))))
-                                (range n)))
-            p2 (if (neg? area) (mapv (fn [[a b]] [b a]) p2) p2)]
-        (loop [ring (vec (range n)) out []]
-          (let [m (count ring)]
-            (if (= m 3)
-              (conj out ring)
-              (let [ear (some (fn [k]
-                                (let [a (ring (mod (dec k) m)) b (ring k) c (ring (mod (inc k) m))
-                                      pa (p2 a) pb (p2 b) pc (p2 c)]
-                                  (when (and (> (cross2 pa pb pc) 1e-12)
-                                             (not-any? #(and (not= % a) (not= % b) (not= % c)
-                                                             (inside? (p2 %) pa pb pc))
-                                                       ring))
-                                    k)))
-                              (range m))]
-                (if ear
-                  (recur (vec (concat (subvec ring 0 ear) (subvec ring (inc ear))))
-                         (conj out [(ring (mod (dec ear) m)) (ring ear) (ring (mod (inc ear) m))]))
-                  (into out (map (fn [i] [(ring 0) (ring i) (ring (inc i))]) (range 1 (dec m)))))))))))))
+      :else (let [p2 (ring-2d pts)]
+              (if (or (> n 256) (convex? p2))
+                (fan (vec (range n)))
+                (ear-clip p2))))))
 
 (defn triangle-count
   "How many triangles the faces of mesh data `md` make: n-2 per face of

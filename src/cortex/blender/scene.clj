@@ -135,7 +135,7 @@
                     (if off
                       (vec (keep #(some-> (f/ref-at bf lay (+ (long off) (* (long %) (long (:size lay))))
                                                     (+ (long off) (long avail)) g)
-                                          (idprop-value bf (inc (long depth))))
+                                          (as-> r (idprop-value bf r (inc (long depth)))))
                                  (range (min n (quot (long avail) (long (:size lay)))))))
                       []))
         :id (some-> (f/deref-ptr bf (f/fget data "pointer")) f/id-name)
@@ -248,6 +248,7 @@
      :properties (properties bf ob)
      :materials (material-slots bf ob data)
      :color (or (f/fget ob "col") [1.0 1.0 1.0 1.0])
+     :modifiers (count (f/list-seq bf (f/fget ob "modifiers")))
      :mesh-ref (when (and (= type "MESH") data (= "Mesh" (:name (:layout data)))) data)}))
 
 (defn world-matrices
