@@ -1,0 +1,89 @@
+(ns cortex.test.body
+  "The worlds that show a body being built, step by step: the hand as a
+  hologram, the hand solid but in pieces, the hand jointed, and the worm
+  that later chapters give senses to. Each is a function returning an
+  unstarted world: (.start (test-worm)) opens a window,
+  (world/run-world! (test-worm) 300) runs it headless."
+  (:require [cortex.body :as body]
+            [cortex.util :as util]
+            [cortex.world :as world])
+  (:import (com.jme3.math ColorRGBA Vector3f)
+           (cortex RatchetTimer)))
+
+(def hand-path "Models/test-creature/hand.blend")
+(def worm-path "Models/test-creature/worm.blend")
+
+(defn hand
+  "The hand, as Blender describes it: a palm and five fingers."
+  []
+  (util/load-blender-model hand-path))
+
+(defn worm
+  "The worm: two segments and one joint."
+  []
+  (util/load-blender-model worm-path))
+
+(def earth-gravity (Vector3f. 0 -9.81 0))
+
+(def gravity-control
+  "G turns gravity on, U turns it off."
+  {"key-g" (fn [w pressed?] (when pressed? (world/set-gravity w earth-gravity)))
+   "key-u" (fn [w pressed?] (when pressed? (world/set-gravity w Vector3f/ZERO)))})
+
+(def debug-control
+  "H shows the physics: collision shapes and joints."
+  {"key-h" (fn [w pressed?] (when pressed? (world/enable-debug w)))})
+
+(defn floor
+  "A grey static slab whose top is at y = -7."
+  []
+  (util/box 10 3 10 :position (Vector3f. 0 -10 0) :color ColorRGBA/Gray :mass 0
+            :name "floor"))
+
+(defn setup
+  "Point the camera at the creature from above and to the side, light
+  the scene and fix the step at 1/60 s. Returns the world."
+  [world]
+  (doto (.getCamera world)
+    (.setLocation (Vector3f. -6.5 7 7))
+    (.lookAt (Vector3f. 0 -1 -1) Vector3f/UNIT_Y))
+  (util/light-up-everything world)
+  (.setTimer world (RatchetTimer. 60))
+  world)
+
+(defn test-hand-1
+  "The hand straight from Blender: it has no physical presence, and
+  things pass through it."
+  []
+  (world/world (hand) world/standard-debug-controls setup world/no-op))
+
+(defn test-hand-2
+  "The hand made solid, with nothing holding it together: switch on
+  gravity (G) and it falls to the floor in pieces."
+  []
+  (world/world (util/nodify [(body/physical! (hand)) (floor)])
+               (merge world/standard-debug-controls gravity-control)
+               #(setup (world/set-gravity % Vector3f/ZERO))
+               world/no-op))
+
+(defn test-hand-3
+  "The hand with its joints: under gravity (G) it falls as one piece,
+  fingers bending only as far as their knuckles allow. H shows the
+  joints."
+  []
+  (world/world (util/nodify [(body/body! (hand)) (floor)])
+               (merge world/standard-debug-controls debug-control gravity-control)
+               #(setup (world/set-gravity % Vector3f/ZERO))
+               world/no-op))
+
+(defn test-worm
+  "The worm falls onto the floor; space fires a cannon ball at it and H
+  shows its joint. Simulated and wall time are shown on screen."
+  []
+  (world/world (util/nodify [(body/body! (worm)) (floor)])
+               (merge world/standard-debug-controls debug-control)
+               (fn [w]
+                 (setup w)
+                 (world/speed-up w)
+                 (util/display-dilated-time w (.getTimer w)))
+               world/no-op))
