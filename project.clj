@@ -15,7 +15,13 @@
                   :exclusions [jbullet/jbullet stack-alloc/stack-alloc java3d/vecmath]]
                  [com.github.stephengold/jbullet "1.0.3"]
                  ;; pure-Java zstd, for .blend files saved by Blender 3.0 and later
-                 [io.airlift/aircompressor "0.27"]]
+                 [io.airlift/aircompressor "0.27"]
+                 ;; OpenGL through LWJGL 3: windows, and offscreen frames drawn
+                 ;; with EGL and no X server at all (cortex.render)
+                 [org.jmonkeyengine/jme3-lwjgl3 "3.2.4-stable"]
+                 [org.lwjgl/lwjgl-egl "3.2.1"]
+                 ;; lein run's options
+                 [org.clojure/tools.cli "1.1.230"]]
   :source-paths ["src"]
   :java-source-paths ["java"]
   :resource-paths ["assets"]
