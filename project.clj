@@ -28,6 +28,8 @@
   :javac-options ["--release" "11" "-Xlint:-options"]
   :jvm-opts ["-Djava.util.logging.config.file=logging.properties"]
   :main cortex.main
-  :aliases {"tangle" ["run" "-m" "cortex.tangle"]}
+  :aliases {"tangle" ["run" "-m" "cortex.tangle"]
+            ;; Leiningen's REPL client (REPLy) is only on Clojars; see cortex.repl
+            "repl" ["trampoline" "run" "-m" "cortex.repl"]}
   :profiles {:dev {:dependencies [[org.jmonkeyengine/jme3-blender "3.2.4-stable"]
                                   [org.clojure/test.check "1.1.1"]]}})
