@@ -30,6 +30,8 @@
   :main cortex.main
   :aliases {"tangle" ["run" "-m" "cortex.tangle"]
             ;; Leiningen's REPL client (REPLy) is only on Clojars; see cortex.repl
-            "repl" ["trampoline" "run" "-m" "cortex.repl"]}
+            "repl" ["trampoline" "run" "-m" "cortex.repl"]
+            ;; lein bench [--quick]: build and simulation timings; see org/bench.org
+            "bench" ["run" "-m" "cortex.bench"]}
   :profiles {:dev {:dependencies [[org.jmonkeyengine/jme3-blender "3.2.4-stable"]
                                   [org.clojure/test.check "1.1.1"]]}})

@@ -1,0 +1,576 @@
+(ns cortex.bench
+  "lein bench: how long cortex takes to build bodies (split into hulls,
+  joint search and joint creation) and how fast it simulates them
+  against bare Bullet, with the growth of each with creature size.
+  Prints tables and writes them to target/bench/ as CSV and EDN."
+  (:require [clojure.java.io :as io]
+            [clojure.pprint :as pprint]
+            [clojure.string :as str]
+            [cortex.bench.creatures :as creatures]
+            [cortex.body :as body]
+            [cortex.util :as util]
+            [cortex.world :as world])
+  (:import (com.jme3.bounding BoundingBox)
+           (com.jme3.bullet PhysicsSpace PhysicsSpace$BroadphaseType)
+           (com.jme3.bullet.control RigidBodyControl)
+           (com.jme3.bullet.objects PhysicsRigidBody)
+           (com.jme3.math Vector3f)
+           (com.jme3.scene Geometry Node)
+           (java.lang.management ManagementFactory)))
+
+(defn median
+  "The middle value of `xs` (the mean of the two middle ones when there
+  is an even number of them), or nil when there are none."
+  [xs]
+  (let [s (vec (sort xs)) n (count s)]
+    (cond (zero? n) nil
+          (odd? n) (s (quot n 2))
+          :else (/ (+ (s (dec (quot n 2))) (s (quot n 2))) 2.0))))
+
+(defn fit-exponent
+  "The slope k of the least-squares line through (log n, log t) for the
+  [n t] `points`: t grows like n^k. Nil with fewer than two sizes or a
+  non-positive time."
+  [points]
+  (let [ps (filter (fn [[n t]] (and (pos? n) t (pos? t))) points)
+        xs (map #(Math/log (double (first %))) ps)
+        ys (map #(Math/log (double (second %))) ps)
+        k (count ps)]
+    (when (and (>= k 2) (> (count (distinct xs)) 1))
+      (let [mx (/ (reduce + xs) k) my (/ (reduce + ys) k)]
+        (/ (reduce + (map #(* (- %1 mx) (- %2 my)) xs ys))
+           (reduce + (map #(let [d (- % mx)] (* d d)) xs)))))))
+
+(defn nlogn-exponent
+  "The exponent `fit-exponent` finds for a cost of exactly n log n over
+  the sizes `ns`: the most a cost no worse than n log n should show."
+  [ns]
+  (fit-exponent (for [n ns] [n (* n (Math/log n))])))
+
+(defn- now ^long [] (System/nanoTime))
+
+(defn- ms-since [^long t0] (/ (- (System/nanoTime) t0) 1e6))
+
+(defn timed
+  "Call (f); return [milliseconds-it-took value]."
+  [f]
+  (let [t0 (now) v (f)] [(ms-since t0) v]))
+
+(defn- settle!
+  "Collect garbage before a measured run, so the run does not pay for
+  the garbage of the one before it."
+  []
+  (System/gc)
+  (Thread/sleep 20))
+
+(defn- body-fn
+  "The function cortex.body currently defines as `sym`, or nil."
+  [sym]
+  (some-> (ns-resolve 'cortex.body sym) deref))
+
+(defn find-targets!
+  "The pair of segments each of `joints` joins, found the way joints!
+  finds them: with one segment index for the creature when cortex.body
+  has one, else with joint-targets, joint by joint."
+  [^Node creature joints]
+  (.updateGeometricState creature)
+  (let [index-of (body-fn 'segment-index)
+        near (body-fn 'targets-near)]
+    (if (and index-of near)
+      (let [index (index-of creature)]
+        (mapv #(near index %) joints))
+      (mapv #(body/joint-targets creature %) joints))))
+
+(defn build-splits!
+  "Build `creature`'s body the way body! does, timing each part: a map
+  of :physical (hulls and rigid bodies), :targets (finding every joint's
+  two segments) and :connect (making the Bullet joints), in ms, and the
+  number of :joints."
+  [^Node creature]
+  (let [[physical _] (timed #(body/physical! creature))
+        joints (vec (body/joints creature))
+        [targets pairs] (timed #(find-targets! creature joints))
+        [connect _] (timed #(mapv (fn [joint [a b]] (body/connect a b joint)) joints pairs))]
+    {:physical physical :targets targets :connect connect :joints (count joints)}))
+
+(defn measure-build!
+  "Median build times of the creatures `make` returns (a fresh, unbuilt
+  creature per call) over `runs` runs after `warmup` runs: :physical,
+  :targets, :connect, their :sum and :body (body! timed whole), in ms."
+  [make {:keys [warmup runs]}]
+  (let [run! (fn []
+               (settle!)
+               (let [s (build-splits! (make))
+                     c (make)
+                     _ (settle!)
+                     [whole _] (timed #(body/body! c))]
+                 (assoc s :sum (+ (:physical s) (:targets s) (:connect s)) :body whole)))]
+    (dotimes [_ warmup] (run!))
+    (let [samples (vec (repeatedly runs run!))]
+      (into {:runs runs :joints (:joints (first samples))}
+            (for [k [:physical :targets :connect :sum :body]]
+              [k (median (map k samples))])))))
+
+(def blender-creatures
+  "The creatures designed in Blender, by name."
+  {"worm" "Models/test-creature/worm.blend"
+   "hand" "Models/test-creature/hand.blend"})
+
+(defn blender-loader
+  "The function that loads a .blend file as a creature, or nil when
+  cortex has none yet."
+  []
+  (some #(try (some-> (requiring-resolve %) deref) (catch Throwable _ nil))
+        ['cortex.util/load-blender-model 'cortex.blender/load-blender-model]))
+
+(defn blender-maker
+  "A function making a fresh copy of the Blender creature `name` per
+  call, or nil when it cannot be loaded; the reason is in the map's
+  :skipped."
+  [name]
+  (if-let [load (blender-loader)]
+    (try (let [path (blender-creatures name)]
+           (load path)
+           {:make #(load path)})
+         (catch Throwable t {:skipped (str "cannot load: " (ex-message t))}))
+    {:skipped "no Blender reader in cortex yet"}))
+
+(def earth
+  "Gravity, in units per second squared."
+  (Vector3f. 0 -9.81 0))
+
+(def fps
+  "Steps per simulated second, in both the cortex world and bare Bullet."
+  60)
+
+(defn floor-under
+  "A static box whose top lies one unit below the lowest point of
+  `creature` and reaches five units past it on every side."
+  [^Node creature]
+  (.updateGeometricState creature)
+  (let [^BoundingBox b (.getWorldBound creature)
+        c (.getCenter b)
+        top (- (.y c) (.getYExtent b) 1)]
+    (util/box (+ 5 (.getXExtent b)) 0.5 (+ 5 (.getZExtent b))
+              :position (Vector3f. (.x c) (- top 0.5) (.z c))
+              :mass 0 :name "floor")))
+
+(defn throughput
+  "Simulated seconds per wall second from `stamps`, the nanoTime at the
+  start of each of a run's steps of 1/fps s, leaving out the first tenth
+  as warm-up."
+  [stamps]
+  (let [skip (quot (count stamps) 10)
+        first-t (nth stamps skip)
+        last-t (peek stamps)
+        steps (- (count stamps) 1 skip)]
+    (when (and (pos? steps) (> last-t first-t))
+      (/ (/ steps (double fps)) (/ (- last-t first-t) 1e9)))))
+
+(defn- body-states
+  "Where each rigid body of `creature` is and how it is turned: the
+  numbers two equal simulations must agree on."
+  [creature]
+  (vec (for [^Geometry g (body/segments creature)
+             :let [^RigidBodyControl c (.getControl g RigidBodyControl)]
+             :when c]
+         [(.getPhysicsLocation c) (.getPhysicsRotation c)])))
+
+(defn cortex-run!
+  "Build a creature from `make`, drop it on a floor in a cortex world and
+  run `frames` frames headless. Returns the frames' :stamps and the
+  bodies' final :states."
+  [make frames]
+  (let [creature (doto ^Node (make) (body/body!))
+        stamps (java.util.ArrayList.)
+        w (world/world (util/nodify [creature (floor-under creature)]) {}
+                       #(world/set-gravity % earth)
+                       (fn [_ _] (.add stamps (now))))]
+    (world/run-world! w frames)
+    {:stamps (vec stamps) :states (body-states creature)}))
+
+(defn bare-space
+  "A Bullet space made as BulletAppState makes one: world bounds of
+  +-10000 and the DBVT broadphase."
+  ^PhysicsSpace []
+  (PhysicsSpace. (Vector3f. -10000 -10000 -10000) (Vector3f. 10000 10000 10000)
+                 PhysicsSpace$BroadphaseType/DBVT))
+
+(defn bare-run!
+  "Build a creature from `make`, put it and a floor into a bare Bullet
+  space with no world and no scene graph, and step the space `frames`
+  times by 1/fps s. Returns the :stamps of the steps and the bodies'
+  final :states."
+  [make frames]
+  (let [creature (doto ^Node (make) (body/body!))
+        space (bare-space)
+        stamps (long-array frames)
+        step (float (/ 1 fps))]
+    (.addAll space (util/nodify [creature (floor-under creature)]))
+    (.setGravity space earth)
+    (doseq [^PhysicsRigidBody b (.getRigidBodyList space)]
+      (.setGravity b earth)
+      (.activate b))
+    (dotimes [i frames]
+      (aset stamps i (now))
+      (.update space step)
+      (.distributeEvents space))
+    (.destroy space)
+    {:stamps (vec stamps) :states (body-states creature)}))
+
+(defn measure-sim!
+  "Median throughput (simulated s per wall s) of the creatures `make`
+  returns, in a cortex world (:cortex) and in bare Bullet (:bare), over
+  `runs` runs of `frames` frames each after one warm-up of each; their
+  :ratio, and :same? when both simulated exactly the same motion."
+  [make {:keys [frames runs]}]
+  (let [one! (fn [run!] (settle!) (run! make frames))]
+    (one! cortex-run!)
+    (one! bare-run!)
+    (let [pairs (vec (repeatedly runs #(vector (one! cortex-run!) (one! bare-run!))))
+          cortex (median (map (comp throughput :stamps first) pairs))
+          bare (median (map (comp throughput :stamps second) pairs))]
+      {:cortex cortex :bare bare :ratio (/ cortex bare) :frames frames :runs runs
+       :same? (every? (fn [[a b]] (= (:states a) (:states b))) pairs)})))
+
+(defn- heap-used
+  "Bytes of heap in use now, garbage included."
+  ^long []
+  (.getUsed (.getHeapMemoryUsage (ManagementFactory/getMemoryMXBean))))
+
+(defn- collected-heap-used
+  "Bytes of heap in use after collecting garbage."
+  ^long []
+  (dotimes [_ 3] (System/gc) (Thread/sleep 30))
+  (heap-used))
+
+(defn peak-heap!
+  "Call (f) while sampling the heap's use every millisecond; return
+  [peak-bytes value], peak-bytes being the highest reading."
+  [f]
+  (let [peak (atom (heap-used))
+        running (atom true)
+        sampler (doto (Thread. ^Runnable
+                               (fn [] (while @running
+                                        (swap! peak max (heap-used))
+                                        (Thread/sleep 1))))
+                  (.setDaemon true)
+                  (.start))
+        v (try (f) (finally (reset! running false) (.join sampler)))]
+    [(max @peak (heap-used)) v]))
+
+(defn- mb [bytes] (/ bytes 1048576.0))
+
+(defn measure-heap!
+  "The heap the creature `make` returns needs: :retained-mb after body!
+  and collection, :build-peak-mb above the starting heap while it is made
+  and built, and, when `frames` is given, :sim-peak-mb above the starting
+  heap while it runs that many frames in a world."
+  [make frames]
+  (let [base (collected-heap-used)
+        [peak creature] (peak-heap! #(doto ^Node (make) (body/body!)))
+        retained (collected-heap-used)
+        result {:retained-mb (mb (- retained base)) :build-peak-mb (mb (- peak base))
+                :max-heap-mb (mb (.maxMemory (Runtime/getRuntime)))
+                :segments (count (body/segments creature))}]
+    (if frames
+      (let [base (collected-heap-used)
+            [peak _] (peak-heap! #(cortex-run! make frames))]
+        (assoc result :sim-peak-mb (mb (- peak base)) :sim-frames frames))
+      result)))
+
+(def plans
+  "What a full and a --quick benchmark measure."
+  {:full {:build {:sizes [10 100 300 1000] :warmup 2 :runs 5}
+          :sim {:sizes [10 100 300] :frames 300 :runs 3}
+          :heap {:size 1000 :frames 120}}
+   :quick {:build {:sizes [10 100 300] :warmup 1 :runs 3}
+           :sim {:sizes [10 100] :frames 120 :runs 1}
+           :heap {:size 1000 :frames nil}}})
+
+(def generators
+  "The generated kinds of creature, by name."
+  {"chain" creatures/chain
+   "tree" creatures/tree})
+
+(defn- generated
+  "A maker of fresh `kind` creatures of `n` segments, lifted to `height`."
+  [kind n height]
+  #(creatures/creature ((generators kind) n) height))
+
+(defn- progress [& args]
+  (binding [*out* *err*] (apply println "bench:" args) (flush)))
+
+(defn run-build!
+  "Build rows: the median split of body! for the Blender creatures and
+  for generated chains and trees of every planned size."
+  [{:keys [sizes] :as opts}]
+  (vec
+   (concat
+    (for [name ["worm" "hand"]
+          :let [{:keys [make skipped]} (blender-maker name)]]
+      (if make
+        (do (progress "building" name)
+            (merge {:creature name :kind "blender" :segments (count (body/segments (make)))}
+                   (measure-build! make opts)))
+        {:creature name :kind "blender" :skipped skipped}))
+    (for [kind ["chain" "tree"] n sizes]
+      (do (progress "building" (str kind "-" n))
+          (merge {:creature (str kind "-" n) :kind kind :segments n}
+                 (measure-build! (generated kind n 0) opts)))))))
+
+(def build-metrics
+  "The build times whose growth is fitted."
+  [:physical :targets :connect :body])
+
+(defn exponents
+  "For each generated kind in `rows` and each of `build-metrics`, the
+  fitted growth exponent over all sizes and over sizes of at least 100,
+  beside the exponent n log n itself would show on the same sizes."
+  [rows]
+  (vec
+   (for [[kind rs] (group-by :kind (remove :skipped rows))
+         :when (not= kind "blender")
+         :let [rs (sort-by :segments rs)
+               large (filter #(>= (:segments %) 100) rs)]]
+     (into {:kind kind
+            :sizes (mapv :segments rs)
+            :nlogn (nlogn-exponent (map :segments rs))
+            :nlogn-large (nlogn-exponent (map :segments large))}
+           (for [m build-metrics
+                 [suffix sel] [["" rs] ["-large" large]]]
+             [(keyword (str (name m) suffix)) (fit-exponent (map (juxt :segments m) sel))])))))
+
+(defn run-sim!
+  "Simulation rows: throughput in a world and in bare Bullet for the
+  Blender creatures and generated chains of the planned sizes."
+  [{:keys [sizes] :as opts}]
+  (vec
+   (concat
+    (for [name ["worm" "hand"]
+          :let [{:keys [make skipped]} (blender-maker name)]]
+      (if make
+        (do (progress "simulating" name)
+            (merge {:creature name :segments (count (body/segments (make)))}
+                   (measure-sim! make opts)))
+        {:creature name :skipped skipped}))
+    (for [n sizes]
+      (do (progress "simulating" (str "chain-" n))
+          (merge {:creature (str "chain-" n) :segments n}
+                 (measure-sim! (generated "chain" n 0) opts)))))))
+
+(defn run-heap!
+  "Heap rows for the planned size of chain and tree."
+  [{:keys [size frames]}]
+  (vec (for [kind ["chain" "tree"]]
+         (do (progress "heap" (str kind "-" size))
+             (merge {:creature (str kind "-" size)}
+                    (measure-heap! (generated kind size 0) frames))))))
+
+(def blender-load-benchmarks
+  "Where the .blend reader's load-time benchmark may live: functions of
+  no arguments returning rows (maps)."
+  ['cortex.bench.blender/bench-rows
+   'cortex.bench.blender/run-bench
+   'cortex.bench.blender/bench])
+
+(defn run-blender-load!
+  "The .blend load-time rows of the reader's own benchmark, or one row
+  saying it is not there (yet)."
+  []
+  (if-let [f (some #(try (some-> (requiring-resolve %) deref) (catch Throwable _ nil))
+                   blender-load-benchmarks)]
+    (do (progress "blender load times")
+        (vec (f)))
+    [{:skipped (str "PENDING: no .blend load benchmark found (looked for "
+                    (str/join ", " blender-load-benchmarks) ")")}]))
+
+(def growth-tolerance
+  "How far above n log n's own fitted exponent a measured exponent may
+  be and still count as n log n: timing noise moves exponents by about
+  this much."
+  0.1)
+
+(defn verdicts
+  "Each target, the measured value and whether it is :met (true, false,
+  or nil when not measured)."
+  [{:keys [build sim exponents]}]
+  (let [row (fn [rows c] (first (filter #(= c (:creature %)) rows)))
+        check (fn [target value ok?] {:target target :value value
+                                      :met (when (some? value) (boolean (ok? value)))})]
+    (vec
+     (concat
+      [(check "body! of chain-300 < 1000 ms" (:body (row build "chain-300")) #(< % 1000))]
+      (for [{:keys [kind] :as e} exponents]
+        (check (format "%s body! growth <= n log n (exponent n>=100 <= %.2f + %.1f)"
+                       kind (or (:nlogn-large e) 0.0) growth-tolerance)
+               (:body-large e)
+               #(<= % (+ (:nlogn-large e) growth-tolerance))))
+      (for [{:keys [creature ratio]} sim :when ratio]
+        (check (str creature " world throughput >= 0.85 of bare Bullet") ratio #(>= % 0.85)))
+      [(check "chain-100 world >= 30x real time" (:cortex (row sim "chain-100")) #(>= % 30))]))))
+
+(defn- fmt
+  "A number to `digits` decimals, or - when there is none."
+  [digits x]
+  (if (number? x) (format (str "%." digits "f") (double x)) "-"))
+
+(defn table
+  "Text of a table of `rows` under `columns`, [title cell-fn] pairs. A
+  row with :skipped shows its first column and then the reason."
+  [columns rows]
+  (let [cells (for [r rows]
+                (if (:skipped r)
+                  [(str ((second (first columns)) r)) (str "(" (:skipped r) ")")]
+                  (mapv #(str ((second %) r)) columns)))
+        full (filter #(= (count columns) (count %)) cells)
+        widths (for [i (range (count columns))]
+                 (apply max (count (first (nth columns i))) (map #(count (nth % i)) full)))
+        ;; the first column (names) left-aligned, the numbers right-aligned
+        pad (fn [i w c] (format (str "%" (if (zero? i) "-" "") w "s") c))
+        line (fn [cs] (str/join "  " (map pad (range) widths cs)))]
+    (str/join "\n" (concat [(line (map first columns))
+                            (line (map #(apply str (repeat % "-")) widths))]
+                           (for [cs cells]
+                             (if (= (count cs) (count columns))
+                               (line cs)
+                               (str (pad 0 (first widths) (first cs))
+                                    "  " (second cs))))))))
+
+(def build-columns
+  [["creature" :creature] ["segments" :segments] ["joints" :joints]
+   ["physical! ms" #(fmt 2 (:physical %))] ["targets ms" #(fmt 2 (:targets %))]
+   ["connect ms" #(fmt 2 (:connect %))] ["sum ms" #(fmt 2 (:sum %))]
+   ["body! ms" #(fmt 2 (:body %))] ["runs" :runs]])
+
+(def exponent-columns
+  (into [["kind" :kind] ["sizes" #(str/join "," (:sizes %))]]
+        (concat (for [m build-metrics]
+                  [(str (name m) " k (all/n>=100)")
+                   #(str (fmt 2 (get % m)) " / " (fmt 2 (get % (keyword (str (name m) "-large")))))])
+                [["n log n k (all/n>=100)" #(str (fmt 2 (:nlogn %)) " / " (fmt 2 (:nlogn-large %)))]])))
+
+(def sim-columns
+  [["creature" :creature] ["segments" :segments]
+   ["world sim-s/s" #(fmt 2 (:cortex %))] ["bare Bullet sim-s/s" #(fmt 2 (:bare %))]
+   ["world/bare" #(fmt 3 (:ratio %))] ["same motion" :same?]
+   ["frames" :frames] ["runs" :runs]])
+
+(def heap-columns
+  [["creature" :creature] ["segments" :segments]
+   ["retained MB" #(fmt 1 (:retained-mb %))] ["build peak MB" #(fmt 1 (:build-peak-mb %))]
+   ["sim peak MB" #(fmt 1 (:sim-peak-mb %))] ["sim frames" #(or (:sim-frames %) "-")]
+   ["max heap MB" #(fmt 0 (:max-heap-mb %))]])
+
+(def verdict-columns
+  [["target" :target] ["measured" #(fmt 3 (:value %))]
+   ["met" #(case (:met %) true "yes" false "NO" "not measured")]])
+
+(defn blender-load-columns
+  "Columns for the reader's rows: whatever keys they have."
+  [rows]
+  (let [ks (distinct (mapcat keys (remove :skipped rows)))]
+    (if (seq ks)
+      (for [k ks] [(name k) #(let [v (get % k)] (if (float? v) (fmt 2 v) (str v)))])
+      [["benchmark" (constantly ".blend load")]])))
+
+(defn report
+  "The text of all the tables of a benchmark `result`."
+  [{:keys [build exponents sim heap blender-load targets machine]}]
+  (str/join
+   "\n\n"
+   [(str "cortex benchmark, " (:when machine) ", " (:cores machine) " cores, "
+         (:java machine) ", load average " (fmt 2 (:load-before machine))
+         " before, " (fmt 2 (:load-after machine)) " after; medians after warm-up")
+    (str "1. Building: body! split into physical! (hulls), joint targets, connect\n"
+         (table build-columns build))
+    (str "Growth exponents k (time ~ n^k), least squares on log-log\n"
+         (table exponent-columns exponents))
+    (str "2. Simulation at 60 Hz fixed step: simulated seconds per wall second\n"
+         (table sim-columns sim))
+    (str "3. Heap\n" (table heap-columns heap))
+    (str ".blend load times (the reader's benchmark)\n"
+         (table (blender-load-columns blender-load) blender-load))
+    (str "Targets\n" (table verdict-columns targets))]))
+
+(defn csv-rows
+  "One [section creature segments metric value] row per number in
+  `result`."
+  [{:keys [build sim heap exponents targets]}]
+  (concat
+   [["section" "creature" "segments" "metric" "value"]]
+   (for [[section rows ks] [["build" build [:physical :targets :connect :sum :body :joints :runs]]
+                            ["sim" sim [:cortex :bare :ratio :same? :frames :runs]]
+                            ["heap" heap [:retained-mb :build-peak-mb :sim-peak-mb :max-heap-mb]]]
+         r rows
+         k ks
+         :when (contains? r k)]
+     [section (:creature r) (:segments r) (name k) (get r k)])
+   (for [e exponents
+         k (keys (dissoc e :kind :sizes))]
+     ["exponent" (:kind e) (str/join " " (:sizes e)) (name k) (get e k)])
+   (for [t targets]
+     ["target" (:target t) "" "met" (:met t)])))
+
+(defn- csv-cell [x]
+  (let [s (str x)]
+    (if (re-find #"[\",\n]" s) (str "\"" (str/replace s "\"" "\"\"") "\"") s)))
+
+(defn csv
+  "CSV text of `rows`."
+  [rows]
+  (str (str/join "\n" (for [r rows] (str/join "," (map csv-cell r)))) "\n"))
+
+(defn write-results!
+  "Write `result` and its report to `dir`: results.csv, results.edn and
+  report.txt. Returns the files written."
+  [dir result]
+  (let [files {"results.csv" (csv (csv-rows result))
+               "results.edn" (with-out-str (pprint/pprint result))
+               "report.txt" (str (report result) "\n")}]
+    (doall (for [[name text] files
+                 :let [f (io/file dir name)]]
+             (do (io/make-parents f) (spit f text) (str f))))))
+
+(defn- load-average []
+  (.getSystemLoadAverage (ManagementFactory/getOperatingSystemMXBean)))
+
+(defn machine
+  "What the numbers were measured on."
+  []
+  {:when (str (java.time.LocalDateTime/now))
+   :cores (.availableProcessors (Runtime/getRuntime))
+   :java (System/getProperty "java.version")
+   :jvm-args (vec (.getInputArguments (ManagementFactory/getRuntimeMXBean)))})
+
+(defn run-benchmark!
+  "Run the benchmark `plan` (see `plans`); return the result as data."
+  [plan]
+  (let [m (assoc (machine) :load-before (load-average))
+        build (run-build! (:build plan))
+        sim (run-sim! (:sim plan))
+        heap (run-heap! (:heap plan))
+        blender-load (run-blender-load!)
+        result {:plan plan :build build :exponents (exponents build)
+                :sim sim :heap heap :blender-load blender-load
+                :machine (assoc m :load-after (load-average))}]
+    (assoc result :targets (verdicts result))))
+
+(defn -main
+  "lein bench [--quick] [--out DIR]: run the benchmark, print its tables
+  and write them to DIR (target/bench by default) as CSV and EDN."
+  [& args]
+  (let [opts (loop [[a & more] args opts {:plan :full :out "target/bench"}]
+               (case a
+                 nil opts
+                 "--quick" (recur more (assoc opts :plan :quick))
+                 "--out" (recur (rest more) (assoc opts :out (first more)))
+                 (throw (ex-info (str "unknown option " a "; use --quick, --out DIR") {}))))
+        t0 (now)
+        result (run-benchmark! (plans (:plan opts)))]
+    (println (report result))
+    (println)
+    (doseq [f (write-results! (:out opts) result)]
+      (println "wrote" f))
+    (println (format "benchmark took %.0f s" (/ (ms-since t0) 1000)))
+    (shutdown-agents)))
