@@ -268,19 +268,18 @@
                      (constants form)
                      (not-allowed form "unknown symbol"))
     (seq? form)
-    (let [[op & args] form
-          values (map evaluate args)]
-      (when-not (every? number? values)
-        (not-allowed form "arguments must be numbers"))
-      (cond
-        (contains? operators op)
-        (try (apply (operators op) values)
-             (catch ArithmeticException e (not-allowed form (ex-message e))))
-        (contains? vector-constructors op)
-        (if (= 3 (count values))
-          (let [[x y z] values] (Vector3f. (float x) (float y) (float z)))
-          (not-allowed form "Vector3f takes three numbers"))
-        :else (not-allowed form "not an allowed operation")))
+    (let [[op & args] form]
+      (when-not (or (contains? operators op) (contains? vector-constructors op))
+        (not-allowed form "not an allowed operation"))
+      (let [values (map evaluate args)]
+        (when-not (every? number? values)
+          (not-allowed form "arguments must be numbers"))
+        (if (contains? operators op)
+          (try (apply (operators op) values)
+               (catch ArithmeticException e (not-allowed form (ex-message e))))
+          (if (= 3 (count values))
+            (let [[x y z] values] (Vector3f. (float x) (float y) (float z)))
+            (not-allowed form "Vector3f takes three numbers")))))
     :else (not-allowed form "not allowed in a joint description")))
 
 (def ^:private max-description-length 10000)

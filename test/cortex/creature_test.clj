@@ -1,5 +1,6 @@
 (ns cortex.creature-test
-  (:require [clojure.test :refer [deftest is testing]]
+  (:require [clojure.java.io :as io]
+            [clojure.test :refer [deftest is testing]]
             [cortex.body :as body]
             [cortex.test.body :as tb]
             [cortex.util :as util]
@@ -137,3 +138,23 @@
 
 (deftest the-worm-repeats-to-the-bit
   (is (= (:state (run-worm)) (:state (run-worm)))))
+
+(def ^:private evil-path
+  "Where the hostile joint descriptions of the broken creatures would
+  write, if anything evaluated them."
+  "/tmp/cortex-evil-joint-was-evaluated")
+
+(deftest broken-creatures-fail-with-named-errors
+  (io/delete-file evil-path true)
+  (doseq [[file pattern]
+          [["lonely" #"creature \"\S*lonely.blend\", joint \"worm-joint\": found 1 segment"]
+           ["evil-joint" #"joint \"worm-joint\": not an allowed operation: \(spit "]
+           ["read-eval" #"joint \"worm-joint\": cannot read \"#=\(clojure.core/spit"]
+           ["bad-mass" #"object \"worm-2\": mass must be a non-negative number, not \"heavy\""]
+           ["unknown-type" #"joint \"worm-joint\": unknown joint type :spring; known types: "]]]
+    (let [path (str "test/fixtures/creatures/" file ".blend")
+          message (try (body/body! (util/load-blender-model path)) nil
+                       (catch clojure.lang.ExceptionInfo e (ex-message e)))]
+      (is (and message (re-find pattern message)) (str file ": " message))))
+  (testing "and nothing in them was evaluated"
+    (is (not (.exists (io/file evil-path))))))
