@@ -1,19 +1,179 @@
 (ns cortex.main
-  "What `lein run` does."
-  (:require [cortex.util :as util]
+  "What `lein run` does: the worm (or the hand) falls onto a floor, in a
+  window when there is a display, otherwise drawn offscreen to PNG
+  frames, an MP4 and a GIF."
+  (:require [clojure.java.io :as io]
+            [clojure.string :as str]
+            [clojure.tools.cli :as cli]
+            [cortex.body :as body]
+            [cortex.render :as render]
+            [cortex.test.body :as tb]
+            [cortex.util :as util]
             [cortex.world :as world])
-  (:import (com.jme3.math Vector3f)))
+  (:import (com.jme3.math Vector3f)
+           (java.nio.file CopyOption Files StandardCopyOption)))
+
+(def creatures
+  "The creatures lein run can show, by name: functions that load them."
+  {"worm" tb/worm
+   "hand" tb/hand})
+
+(defn creature
+  "The creature called `creature-name` (see `creatures`), loaded from
+  its .blend file; an ex-info naming the choices for any other name."
+  [creature-name]
+  (if-let [load-creature (get creatures creature-name)]
+    (load-creature)
+    (throw (ex-info (str "no creature called " (pr-str creature-name)
+                         "; choose one of " (str/join ", " (sort (keys creatures))))
+                    {:creature creature-name}))))
+
+(defn- frame-the-fall!
+  "Put the camera back from the creature's starting place and level
+  with its fall, aimed at the middle of the drop to the floor."
+  [world]
+  (doto (.getCamera world)
+    (.setLocation (Vector3f. -3 0 16))
+    (.lookAt (Vector3f. 0 -4.5 0) Vector3f/UNIT_Y))
+  world)
+
+(defn demo-world
+  "A world in which `creature` (a node loaded from Blender) is given its
+  body and falls onto the floor under gravity. Keys: space fires a
+  cannon ball, G/U switch gravity on/off, H shows the physics, and the
+  fly-by camera's keys. Simulated time is shown on screen."
+  [creature]
+  (world/world (util/nodify [(body/body! creature) (tb/floor)])
+               (merge world/standard-debug-controls tb/gravity-control tb/debug-control)
+               (fn [w]
+                 (tb/setup w)
+                 (frame-the-fall! w)
+                 (world/speed-up w)
+                 (util/display-dilated-time w (.getTimer w)))
+               world/no-op))
+
+(def frames-per-second
+  "Simulated frames a second: the ratchet timer's step is 1/60 s."
+  60)
+
+(def cli-options
+  [["-c" "--creature NAME" "the creature: worm or hand"
+    :default "worm"
+    :validate [#(contains? creatures %)
+               (str "must be one of " (str/join ", " (sort (keys creatures))))]]
+   ["-s" "--seconds SECONDS" "simulated seconds to record offscreen"
+    :default 4.0
+    :parse-fn parse-double
+    :validate [#(and % (< 0 %) (<= % 600))
+               "must be a number of seconds, more than 0 and at most 600"]]
+   ["-o" "--out FOLDER" "where frames, MP4 and GIF go (default out/CREATURE); with a window, record there"]
+   ["-r" "--resolution WxH" "size of the frames, or of the window"
+    :default [640 480]
+    :default-desc "640x480"
+    :parse-fn render/parse-size]
+   [nil "--headless" "draw offscreen even when there is a display"]
+   [nil "--window" "open a window (needs a display)"]
+   ["-h" "--help" "say how to use lein run"]])
+
+(defn usage
+  "The help text, around tools.cli's summary of the options."
+  [summary]
+  (str/join "\n" ["lein run [options]: the worm falls onto a floor."
+                  ""
+                  "In a window when there is a display (space fires a ball, G/U gravity on/off,"
+                  "H shows the physics, W A S D Q Z and the mouse move the camera, Esc quits);"
+                  "otherwise drawn offscreen to PNG frames, an MP4 and a GIF."
+                  ""
+                  "Options:"
+                  summary]))
+
+(defn plan
+  "What lein run should do, given its `args` and whether there is a
+  `display?`: a map with :action :help, :error (with :message), or
+  :window or :offscreen with :creature, :frames, :out, :size and
+  :record? (whether to record frames)."
+  [args display?]
+  (let [{:keys [options errors summary]} (cli/parse-opts args cli-options)
+        {:keys [creature seconds out resolution headless window help]} options]
+    (cond
+      help {:action :help :message (usage summary)}
+      errors {:action :error :message (str/join "\n" (conj errors "(lein run --help for help)"))}
+      (and headless window) {:action :error :message "--headless and --window contradict each other"}
+      (and window (not display?))
+      {:action :error
+       :message "no display to open a window on (DISPLAY is unset or unreachable); try --headless"}
+      :else
+      {:action (if (and display? (not headless)) :window :offscreen)
+       :creature creature
+       :frames (max 1 (Math/round (* seconds frames-per-second)))
+       :out (or out (str "out/" creature))
+       :record? (or (boolean headless) (not display?) (some? out))
+       :size resolution})))
+
+(defn- still!
+  "Copy the last recorded frame in `dir` to NAME.png beside it; return
+  its path."
+  [dir name]
+  (when-let [last-frame (last (render/frames-in dir))]
+    (let [still (io/file dir (str name ".png"))]
+      (Files/copy (.toPath last-frame) (.toPath still)
+                  ^"[Ljava.nio.file.CopyOption;"
+                  (into-array CopyOption [StandardCopyOption/REPLACE_EXISTING]))
+      (str still))))
+
+(defn- report-files!
+  "Make the still and the videos of the frames in `out`; print where
+  everything is."
+  [out creature-name]
+  (let [frames (count (render/frames-in out))
+        still (still! out creature-name)
+        videos (render/make-videos! out frames-per-second {:name creature-name})]
+    (println "frames: " (str (io/file out "frame-*.png")) (str "(" frames ")"))
+    (doseq [[label path] [["picture:" still] ["video:  " (:mp4 videos)] ["GIF:    " (:gif videos)]]
+            :when path]
+      (println label path))))
+
+(defn show-offscreen!
+  "Draw the demo offscreen for the planned number of frames, recording
+  every one in the planned folder, then make the still and videos."
+  [{:keys [creature frames out size]}]
+  (let [w (demo-world (cortex.main/creature creature))
+        [width height] size
+        start (System/nanoTime)]
+    (println "no window: drawing" (format "%.1f" (/ frames (double frames-per-second)))
+             "simulated seconds of the" creature "offscreen at" (str width "x" height) "...")
+    (render/record! w out {:progress (render/progress-printer frames)})
+    (render/run-offscreen! w frames {:size size})
+    (let [seconds (/ (- (System/nanoTime) start) 1e9)]
+      (println (format "drew and wrote %d frames in %.1f s (%.0f a second)"
+                       frames seconds (/ frames seconds))))
+    (report-files! out creature)))
+
+(defn show-window!
+  "Open the demo in a window and wait until it is closed, recording to
+  the planned folder when asked to."
+  [{:keys [creature out size record?]}]
+  (let [w (demo-world (cortex.main/creature creature))]
+    (when record? (render/record! w out))
+    (println "space: fire a ball | G/U: gravity on/off | H: show physics |"
+             "W A S D Q Z, mouse: camera | Esc: quit")
+    (render/await-world! (render/start-window! w {:size size}))
+    (when record? (report-files! out creature))))
 
 (defn -main
-  "Drop a box onto a floor in a headless world for two simulated
-  seconds and say where it came to rest."
-  [& _]
-  (let [b (util/box 0.5 0.5 0.5 :position (Vector3f. 0 4 0) :name "box")
-        floor (util/box 10 1 10 :position (Vector3f. 0 -1 0) :mass 0 :name "floor")
-        w (world/world (util/nodify [b floor]) {}
-                       #(world/set-gravity % (Vector3f. 0 -9.81 0))
-                       world/no-op)]
-    (world/run-world! w 120)
-    (println "ran" (:frames @w) "frames (2 simulated seconds) headless;"
-             "the box fell from y = 4 to y =" (.y (.getWorldTranslation b)))
-    (shutdown-agents)))
+  "lein run [options]: see `cli-options`, or lein run --help."
+  [& args]
+  (let [{:keys [action message] :as p} (plan args (render/display?))
+        status (try
+                 (case action
+                   :help (do (println message) 0)
+                   :error (do (binding [*out* *err*] (println message)) 2)
+                   :window (do (show-window! p) 0)
+                   :offscreen (do (show-offscreen! p) 0))
+                 (catch clojure.lang.ExceptionInfo e
+                   (binding [*out* *err*]
+                     (println "cortex:" (ex-message e)))
+                   1))]
+    (flush)
+    (shutdown-agents)
+    (System/exit status)))

@@ -1,0 +1,114 @@
+(ns cortex.main-test
+  (:require [clojure.test :refer [deftest is testing]]
+            [cortex.body :as body]
+            [cortex.main :as main]
+            [cortex.render :as render]
+            [cortex.util :as util])
+  (:import (com.jme3.math Vector3f)
+           (com.jme3.renderer Camera)
+           (java.awt.image BufferedImage)))
+
+(deftest reading-the-command-line
+  (testing "defaults: a window when there is a display, offscreen when not"
+    (is (= {:action :window :creature "worm" :frames 240 :out "out/worm"
+            :record? false :size [640 480]}
+           (main/plan [] true)))
+    (is (= {:action :offscreen :creature "worm" :frames 240 :out "out/worm"
+            :record? true :size [640 480]}
+           (main/plan [] false))))
+  (testing "options"
+    (is (= {:action :offscreen :creature "hand" :frames 90 :out "x" :record? true :size [320 240]}
+           (main/plan ["--creature" "hand" "-s" "1.5" "-o" "x" "-r" "320x240" "--headless"] true)))
+    (is (:record? (main/plan ["--out" "y"] true)) "a window records when given a folder"))
+  (testing "help"
+    (is (= :help (:action (main/plan ["--help"] false))))
+    (is (re-find #"--creature" (:message (main/plan ["-h"] false)))))
+  (testing "bad input is a message"
+    (doseq [[args pattern] [[["--creature" "cat"] #"worm, hand|hand, worm"]
+                            [["-r" "640"] #"640x480"]
+                            [["-r" "641x480"] #"even"]
+                            [["-s" "0"] #"more than 0"]
+                            [["-s" "soon"] #"seconds"]
+                            [["--bogus"] #"bogus"]
+                            [["--headless" "--window"] #"contradict"]]]
+      (let [p (main/plan args true)]
+        (is (= :error (:action p)) (pr-str args))
+        (is (re-find pattern (:message p)) (pr-str args))))
+    (is (re-find #"no display" (:message (main/plan ["--window"] false))))))
+
+(deftest unknown-creatures
+  (is (thrown-with-msg? clojure.lang.ExceptionInfo #"no creature called \"cat\""
+                        (main/creature "cat"))))
+
+(defn- rgb [^BufferedImage image x y]
+  (let [p (.getRGB image (int x) (int y))]
+    [(bit-and 0xff (bit-shift-right p 16)) (bit-and 0xff (bit-shift-right p 8)) (bit-and 0xff p)]))
+
+(defn- copy-image ^BufferedImage [^BufferedImage image]
+  (doto (BufferedImage. (.getWidth image) (.getHeight image) BufferedImage/TYPE_INT_RGB)
+    (.setData (.getData image))))
+
+(defn- patch
+  "The colours of the 7x7 pixels around (x, y)."
+  [image [x y]]
+  (for [dx (range -3 4) dy (range -3 4)] (rgb image (+ x dx) (+ y dy))))
+
+(defn- scenery?
+  "Whether a colour is the black sky's or the flat grey floor's."
+  [[r g b :as colour]]
+  (or (= [0 0 0] colour)
+      (and (= r g b) (< 100 r 160))))
+
+(defn- mostly-creature?
+  "Whether at least 60% of the pixels around `at` are neither sky nor
+  floor: a worm segment seen edge-on at rest is a few pixels thick,
+  and the hinge at the worm's middle has a sliver of gap."
+  [image at]
+  (let [colours (patch image at)]
+    (>= (count (remove scenery? colours)) (* 0.6 (count colours)))))
+
+(defn- on-screen
+  "Where the centre of `spatial`'s bounds is on the picture taken by
+  `cam`, in pixels from the top left."
+  [^Camera cam spatial]
+  (let [s (.getScreenCoordinates cam (.getCenter (.getWorldBound spatial)))]
+    [(Math/round (.x s)) (- (.getHeight cam) 1 (Math/round (.y s)))]))
+
+(deftest the-worm-is-seen-falling
+  (let [worm (main/creature "worm")
+        w (main/demo-world worm)
+        keep #{1 30 80}
+        seen (atom {})
+        start (System/nanoTime)]
+    (render/grab-frames!
+     w (fn [image]
+         (let [n (inc (count (:all @seen)))
+               cam (.getCamera w)
+               at (on-screen cam worm)]
+           (swap! seen update :all (fnil conj []) at)
+           (when (keep n)
+             (swap! seen assoc n {:image (copy-image image) :at at
+                                  :segments (mapv #(on-screen cam %) (body/segments worm))})))))
+    (render/run-offscreen! w 80 {:size [320 240]})
+    (println (format "drew 80 frames of the worm offscreen in %.2f s"
+                     (/ (- (System/nanoTime) start) 1e9)))
+    (doseq [n (sort keep)
+            :let [{:keys [image at segments]} (get @seen n)
+                  [x y] at]]
+      (testing (str "frame " n ": the worm is on the picture where the camera sees it " at)
+        (is (< 3 x 316))
+        (is (< 3 y 236))
+        (is (mostly-creature? image at)
+            (str "colours around the worm: " (vec (distinct (patch image at)))))
+        (is (= 2 (count segments)))
+        (doseq [s segments]
+          (is (mostly-creature? image s) (str "and around its segment at " s)))))
+    (testing "the picture is not blank"
+      (let [image (:image (get @seen 80))]
+        (is (< 10 (count (distinct (for [x (range 0 320 4) y (range 0 240 4)] (rgb image x y))))))))
+    (testing "the worm moves: down the picture, and the pictures differ"
+      (let [[_ y1] (:at (get @seen 1))
+            [_ y80] (:at (get @seen 80))]
+        (is (> y80 (+ y1 20))))
+      (is (not= (vec (.getRGB ^BufferedImage (:image (get @seen 1)) 0 0 320 240 nil 0 320))
+                (vec (.getRGB ^BufferedImage (:image (get @seen 80)) 0 0 320 240 nil 0 320)))))))
