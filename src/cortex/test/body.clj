@@ -5,6 +5,7 @@
   unstarted world: (.start (test-worm)) opens a window,
   (world/run-world! (test-worm) 300) runs it headless."
   (:require [cortex.body :as body]
+            [cortex.render :as render]
             [cortex.util :as util]
             [cortex.world :as world])
   (:import (com.jme3.math ColorRGBA Vector3f)
@@ -51,39 +52,60 @@
   (.setTimer world (RatchetTimer. 60))
   world)
 
+(defn- record-if-asked!
+  "Record world `w` into folder `record?` when it names one, into
+  out/`world-name` when it is true, not at all when it is false or nil."
+  [w record? world-name]
+  (when record?
+    (render/record! w (if (true? record?) (str "out/" world-name) record?)))
+  w)
+
 (defn test-hand-1
   "The hand straight from Blender: it has no physical presence, and
-  things pass through it."
-  []
-  (world/world (hand) world/standard-debug-controls setup world/no-op))
+  things pass through it. Records its frames when `record?` is a
+  folder (or true, for out/test-hand-1)."
+  ([] (test-hand-1 false))
+  ([record?]
+   (world/world (hand) world/standard-debug-controls
+                #(setup (record-if-asked! % record? "test-hand-1"))
+                world/no-op)))
 
 (defn test-hand-2
   "The hand made solid, with nothing holding it together: switch on
-  gravity (G) and it falls to the floor in pieces."
-  []
-  (world/world (util/nodify [(body/physical! (hand)) (floor)])
-               (merge world/standard-debug-controls gravity-control)
-               #(setup (world/set-gravity % Vector3f/ZERO))
-               world/no-op))
+  gravity (G) and it falls to the floor in pieces. Records its frames
+  when `record?` is a folder (or true, for out/test-hand-2)."
+  ([] (test-hand-2 false))
+  ([record?]
+   (world/world (util/nodify [(body/physical! (hand)) (floor)])
+                (merge world/standard-debug-controls gravity-control)
+                #(setup (world/set-gravity (record-if-asked! % record? "test-hand-2")
+                                           Vector3f/ZERO))
+                world/no-op)))
 
 (defn test-hand-3
   "The hand with its joints: under gravity (G) it falls as one piece,
   fingers bending only as far as their knuckles allow. H shows the
-  joints."
-  []
-  (world/world (util/nodify [(body/body! (hand)) (floor)])
-               (merge world/standard-debug-controls debug-control gravity-control)
-               #(setup (world/set-gravity % Vector3f/ZERO))
-               world/no-op))
+  joints. Records its frames when `record?` is a folder (or true, for
+  out/test-hand-3)."
+  ([] (test-hand-3 false))
+  ([record?]
+   (world/world (util/nodify [(body/body! (hand)) (floor)])
+                (merge world/standard-debug-controls debug-control gravity-control)
+                #(setup (world/set-gravity (record-if-asked! % record? "test-hand-3")
+                                           Vector3f/ZERO))
+                world/no-op)))
 
 (defn test-worm
   "The worm falls onto the floor; space fires a cannon ball at it and H
-  shows its joint. Simulated and wall time are shown on screen."
-  []
-  (world/world (util/nodify [(body/body! (worm)) (floor)])
-               (merge world/standard-debug-controls debug-control)
-               (fn [w]
-                 (setup w)
-                 (world/speed-up w)
-                 (util/display-dilated-time w (.getTimer w)))
-               world/no-op))
+  shows its joint. Simulated and wall time are shown on screen. Records
+  its frames when `record?` is a folder (or true, for out/test-worm)."
+  ([] (test-worm false))
+  ([record?]
+   (world/world (util/nodify [(body/body! (worm)) (floor)])
+                (merge world/standard-debug-controls debug-control)
+                (fn [w]
+                  (record-if-asked! w record? "test-worm")
+                  (setup w)
+                  (world/speed-up w)
+                  (util/display-dilated-time w (.getTimer w)))
+                world/no-op)))
