@@ -507,17 +507,20 @@
       (aset b pos (unchecked-byte (bit-xor (aget b pos) (bit-shift-left 1 (long bit))))))
     (if cut (java.util.Arrays/copyOf b (int (max 0 (* (double cut) n)))) b)))
 
+(def fraction
+  "A number in [0, 1), uniform whatever the size (test.check's doubles
+  cluster near 0 at small sizes, which would flip the first byte over
+  and over)."
+  (gen/fmap #(/ (double %) 1e6) (gen/choose 0 999999)))
+
 (def gen-mutation
   "A base index, up to 12 bit flips, and a truncation one time in five."
   (gen/hash-map
    :base gen/nat
    :flips (gen/vector (gen/tuple (gen/frequency [[4 (gen/return true)] [1 (gen/return false)]])
-                                 (gen/double* {:min 0.0 :max 0.999999 :NaN? false :infinite? false})
-                                 (gen/double* {:min 0.0 :max 0.999999 :NaN? false :infinite? false})
-                                 (gen/choose 0 7))
+                                 fraction fraction (gen/choose 0 7))
                       1 12)
-   :cut (gen/frequency [[4 (gen/return nil)]
-                        [1 (gen/double* {:min 0.0 :max 0.999999 :NaN? false :infinite? false})]])))
+   :cut (gen/frequency [[4 (gen/return nil)] [1 fraction]])))
 
 (defn survives?
   "Does loading the mutated bytes end, within ten seconds, in a Node or

@@ -98,7 +98,7 @@
                               (need q (+ 3 len) "block")
                               (if last? nq (recur nq))))]
                   (need end checksum "checksum")
-                  (recur (+ end checksum) (conj frames [p (+ end checksum)]))))
+                  (recur (long (+ (long end) checksum)) (conj frames [p (+ (long end) checksum)]))))
 
               :else
               (fail source (str "not a zstd frame at byte " p)))))))))
@@ -109,13 +109,19 @@
   ^bytes [source ^bytes raw]
   (cond
     (magic? raw [0x1F 0x8B])
-    (drain source (GZIPInputStream. (ByteArrayInputStream. raw)))
+    (try (drain source (GZIPInputStream. (ByteArrayInputStream. raw)))
+         (catch java.io.IOException e
+           (fail source (str "gzip data damaged or cut short (" (.getMessage e) ")"))))
 
     (magic? raw [0x28 0xB5 0x2F 0xFD])
     (let [out (ByteArrayOutputStream.)]
       (doseq [[^long s ^long e] (zstd-frames source raw)]
-        (let [part (drain source (ZstdInputStream.
-                                  (ByteArrayInputStream. raw s (- e s))))]
+        (let [^bytes part (try (drain source (ZstdInputStream.
+                                       (ByteArrayInputStream. raw s (- e s))))
+                        (catch RuntimeException e
+                          (if (instance? clojure.lang.ExceptionInfo e)
+                            (throw e)
+                            (fail source (str "zstd data damaged (" (.getMessage e) ")")))))]
           (when (> (+ (.size out) (alength part)) max-bytes)
             (fail source (str "decompresses to more than " max-bytes " bytes")))
           (.write out part 0 (alength part))))
@@ -160,43 +166,43 @@
         (when-not (zero? c) (.append sb (char c)))))
     (str sb)))
 
+(defrecord Block [code ^long offset ^long len ^long old ^long sdna ^long nstructs group])
+
 (defn read-blocks
-  "Every block of the file up to `ENDB`, as maps of :code, :offset (of
+  "Every block of the file up to `ENDB`, as Blocks of :code, :offset (of
   the block's data), :len, :old (the pointer the block had in memory
-  when saved), :sdna and :count. Each length is checked against the
-  bytes that are actually there; each step moves forward, so the walk
-  ends within the file's size."
+  when saved), :sdna and :nstructs, the number of structs in it (:group
+  is filled in later). Each
+  length is checked against the bytes that are actually there; each
+  step moves forward, so the walk ends within the file's size."
   [source header ^ByteBuffer buf]
-  (let [limit (.limit buf)
-        {:keys [^long header-size ^long ptr-size bhead ^long bhead-size]} header]
-    (loop [pos header-size, blocks (transient [])]
+  (let [limit (long (.limit buf))
+        large? (= :large (:bhead header))
+        ptr-size (long (:ptr-size header))
+        bhead-size (long (:bhead-size header))]
+    (loop [pos (long (:header-size header)), blocks (transient [])]
       (when (> (+ pos bhead-size) limit)
         (fail source (str "truncated: block header at byte " pos
                           " runs past the end (" limit " bytes); no ENDB block")))
       (let [code (code-string buf pos)
-            [len old sdna cnt]
-            (if (= bhead :large)
-              [(.getLong buf (int (+ pos 16)))
-               (.getLong buf (int (+ pos 8)))
-               (bit-and (long (.getInt buf (int (+ pos 4)))) 0xFFFFFFFF)
-               (.getLong buf (int (+ pos 24)))]
-              [(long (.getInt buf (int (+ pos 4))))
-               (if (= ptr-size 8)
-                 (.getLong buf (int (+ pos 8)))
-                 (bit-and (long (.getInt buf (int (+ pos 8)))) 0xFFFFFFFF))
-               (long (.getInt buf (int (+ pos 8 ptr-size))))
-               (long (.getInt buf (int (+ pos 12 ptr-size))))])
-            start (+ pos bhead-size)
-            ^long len len]
+            p (int pos)
+            len (if large? (.getLong buf (+ p 16)) (long (.getInt buf (+ p 4))))
+            old (cond large? (.getLong buf (+ p 8))
+                      (= ptr-size 8) (.getLong buf (+ p 8))
+                      :else (bit-and (long (.getInt buf (+ p 8))) 0xFFFFFFFF))
+            sdna (if large?
+                   (bit-and (long (.getInt buf (+ p 4))) 0xFFFFFFFF)
+                   (long (.getInt buf (int (+ p 8 ptr-size)))))
+            cnt (if large? (.getLong buf (+ p 24)) (long (.getInt buf (int (+ p 12 ptr-size)))))
+            start (+ pos bhead-size)]
         (when (or (neg? len) (> len (- limit start)))
           (fail source (str "block " (pr-str code) " at byte " pos " claims "
                             len " bytes but only " (- limit start) " remain")
                 {:block code :offset pos}))
-        (let [block {:code code :offset start :len len :old old
-                     :sdna sdna :count cnt}]
-          (if (= code "ENDB")
-            (persistent! blocks)
-            (recur (+ start len) (conj! blocks block))))))))
+        (if (= code "ENDB")
+          (persistent! blocks)
+          (recur (+ start len)
+                 (conj! blocks (->Block code start len old sdna cnt nil))))))))
 
 (defn- align4
   "Round byte offset `p` up to a multiple of 4 counted from `base`."
@@ -225,12 +231,13 @@
                   (loop [p p, i 0, out (transient [])]
                     (if (= i n)
                       [(persistent! out) p]
-                      (let [q (loop [q p]
-                                (need q 1 what)
-                                (if (zero? (.get buf (int q))) q (recur (inc q))))
-                            bs (byte-array (- q p))]
+                      (let [q (loop [q (long p)]
+                                (cond (>= q end) (fail source (str "DNA1 block cut short reading " what))
+                                      (zero? (.get buf (int q))) q
+                                      :else (recur (inc q))))
+                            bs (byte-array (- (long q) (long p)))]
                         (.get (.duplicate buf) (int p) bs)
-                        (recur (inc q) (inc i) (conj! out (String. bs "UTF-8")))))))
+                        (recur (inc (long q)) (inc i) (conj! out (String. bs "UTF-8")))))))
         _ (tag offset "SDNA")
         _ (tag (+ offset 4) "NAME")
         [names p] (strings (+ offset 12) (int-at (+ offset 8) "names") "names")
@@ -265,7 +272,7 @@
                                                                      " has a bad field")))
                                                  [ft fnm]))
                                              (range nf))]
-                            (recur (+ q 4 (* 4 nf)) (inc i)
+                            (recur (+ q 4 (* 4 (long nf))) (inc i)
                                    (conj! out {:type t :fields fields})))))))]
     {:names names :types types :tlens tlens :structs structs}))
 
@@ -281,10 +288,13 @@
     {:base base :ptr? (or (pos? ptr) func?) :func? func? :dims dims
      :n (reduce * 1 dims)}))
 
+(declare field-reader)
+
 (defn- struct-layout*
   "Lay out one SDNA struct: its name, size and fields in order, each
-  with :name, :type, :offset, :size and pointer/array facts. Offsets are
-  the sums of the sizes before, as makesdna lays them out (it demands
+  with :name, :type, :offset, :size, pointer/array facts and :read, a
+  function that decodes the field from a struct view. Offsets are the
+  sums of the sizes before, as makesdna lays them out (it demands
   explicit padding, so there is none to guess)."
   [{:keys [types tlens]} parsed struct-of-type ptr-size {:keys [type fields]}]
   (let [fs (loop [[[ft fnm] & more] fields, off 0, out []]
@@ -295,7 +305,8 @@
                      f (assoc pn :name (:base pn) :type (types ft)
                               :struct (when-not ptr? (struct-of-type ft))
                               :tlen (tlens ft)
-                              :offset off :size size)]
+                              :offset off :size size)
+                     f (assoc f :read (field-reader f))]
                  (recur more (+ off (long size)) (conj out f)))))]
     {:name (types type)
      :size (tlens type)
@@ -337,6 +348,30 @@
       (let [g (if (= "DATA" (:code b)) g i)]
         (recur more g (inc i) (conj! out (assoc b :group g)))))))
 
+(defonce ^:private catalogues
+  (atom {}))
+
+(defn- catalogue
+  "The SDNA of DNA1 block `dna` with its struct layouts and an index of
+  structs by name. Files saved by one Blender version carry the same
+  catalogue, so these are kept, keyed by the block's exact bytes, and
+  a file with a catalogue seen before skips parsing and laying it out.
+  At most 32 catalogues are kept."
+  [source ^ByteBuffer buf {:keys [^long offset ^long len] :as dna} ptr-size]
+  (let [bs (byte-array len)
+        _ (.get (.duplicate buf) (int offset) bs)
+        k [ptr-size (str (.order buf)) (java.util.Arrays/hashCode bs)]
+        hit (some #(when (java.util.Arrays/equals ^bytes (:bytes %) bs) %) (get @catalogues k))]
+    (or hit
+        (let [sdna (parse-sdna source buf dna)
+              entry {:bytes bs
+                     :sdna sdna
+                     :layouts (layouts sdna ptr-size)
+                     :struct-index (into {} (map-indexed (fn [i s] [((:types sdna) (:type s)) i])
+                                                         (:structs sdna)))}]
+          (swap! catalogues (fn [c] (update (if (>= (count c) 32) {} c) k conj entry)))
+          entry))))
+
 (defn parse
   "Parse the bytes of a .blend file: header, blocks, SDNA, struct
   layouts and indexes of blocks by old pointer. `source` names the
@@ -349,7 +384,7 @@
         blocks (with-groups (read-blocks source header buf))
         dna (or (some #(when (= (:code %) "DNA1") %) blocks)
                 (fail source "no DNA1 block (struct definitions) in the file"))
-        sdna (parse-sdna source buf dna)
+        {:keys [sdna layouts struct-index]} (catalogue source buf dna (:ptr-size header))
         olds (remove zero? (map :old blocks))]
     (assoc header
            :source (str source)
@@ -357,16 +392,15 @@
            :size (alength bytes)
            :blocks blocks
            :sdna sdna
-           :layouts (layouts sdna (:ptr-size header))
-           :struct-index (into {} (map-indexed (fn [i s] [((:types sdna) (:type s)) i])
-                                               (:structs sdna)))
+           :layouts layouts
+           :struct-index struct-index
            :ids (ptr-map (remove #(= "DATA" (:code %)) blocks))
            :groups (into {} (for [[g bs] (group-by :group blocks)] [g (ptr-map bs)]))
            :all (when (= (count olds) (count (distinct olds))) (ptr-map blocks)))))
 
 (defrecord Ptr [^long addr group])
 
-(defrecord Ref [bf layout ^long offset ^long end group])
+(defrecord Ref [bf ^ByteBuffer buf layout ^long offset ^long end group])
 
 (defn struct-layout
   "The layout of struct `type-name`, or nil when this file has none."
@@ -380,7 +414,7 @@
   not fit."
   [bf layout offset end group]
   (when (and layout (<= (+ (long offset) (long (:size layout))) (long end)) (>= (long offset) 0))
-    (->Ref bf layout offset end group)))
+    (->Ref bf (:buf bf) layout offset end group)))
 
 (defn- lookup
   "The block of sorted map `m` holding address `addr`, and the offset
@@ -487,41 +521,77 @@
 (defn field-info
   "The layout entry of field `fname` of the struct `r` views, or nil."
   [^Ref r fname]
-  (get-in (.layout r) [:by-name fname]))
+  (get (:by-name (.layout r)) fname))
 
 (defn has-field?
   "Does the struct `r` views have field `fname` in this file's SDNA?"
   [r fname]
   (some? (field-info r fname)))
 
+(defn- prim-reader
+  "A function reading one value of SDNA primitive `t` (`size` bytes) at
+  a buffer offset."
+  [t ^long size]
+  (case t
+    ("char" "int8_t") (fn [^ByteBuffer b ^long o] (long (.get b (int o))))
+    ("uchar" "uint8_t") (fn [^ByteBuffer b ^long o] (bit-and (long (.get b (int o))) 0xff))
+    "bool" (fn [^ByteBuffer b ^long o] (not (zero? (.get b (int o)))))
+    ("short" "int16_t") (fn [^ByteBuffer b ^long o] (long (.getShort b (int o))))
+    ("ushort" "uint16_t") (fn [^ByteBuffer b ^long o] (bit-and (long (.getShort b (int o))) 0xffff))
+    ("int" "int32_t") (fn [^ByteBuffer b ^long o] (long (.getInt b (int o))))
+    ("uint" "uint32_t") (fn [^ByteBuffer b ^long o] (bit-and (long (.getInt b (int o))) 0xffffffff))
+    "float" (fn [^ByteBuffer b ^long o] (.getFloat b (int o)))
+    "double" (fn [^ByteBuffer b ^long o] (.getDouble b (int o)))
+    ("int64_t" "uint64_t") (fn [^ByteBuffer b ^long o] (.getLong b (int o)))
+    (fn [^ByteBuffer b ^long o] (read-prim b t size o))))
+
+(defn field-reader
+  "The function that decodes field `f` from a struct view: numbers,
+  strings (char arrays), vectors (other arrays), Ptrs (pointers; nil
+  for NULL) or views of embedded structs. Made once per field of a
+  catalogue, so reading a field is a map look-up and a call."
+  [{:keys [ptr? dims n type tlen struct offset]}]
+  (let [n (long n) tlen (long tlen) offset (long offset)
+        prim (when-not (or ptr? struct) (prim-reader type tlen))]
+    (cond
+      (and ptr? (empty? dims))
+      (fn [^Ref r] (read-ptr (.bf r) (+ (.offset r) offset) (.group r)))
+
+      ptr?
+      (fn [^Ref r]
+        (let [bf (.bf r) ps (long (:ptr-size bf))]
+          (shape (map #(read-ptr bf (+ (.offset r) offset (* (long %) ps)) (.group r)) (range n))
+                 dims)))
+
+      struct
+      (fn [^Ref r]
+        (let [lay (layout (.bf r) struct)
+              off (+ (.offset r) offset)]
+          (if (empty? dims)
+            (->Ref (.bf r) (.buf r) lay off (.end r) (.group r))
+            (shape (map #(->Ref (.bf r) (.buf r) lay (+ off (* (long %) tlen)) (.end r) (.group r))
+                        (range n))
+                   dims))))
+
+      (and (= type "char") (= 1 (count dims)))
+      (fn [^Ref r] (c-string (.bf r) (+ (.offset r) offset) n))
+
+      (empty? dims)
+      (fn [^Ref r] (prim (.buf r) (+ (.offset r) offset)))
+
+      :else
+      (fn [^Ref r]
+        (let [off (+ (.offset r) offset)]
+          (shape (map #(prim (.buf r) (+ off (* (long %) tlen))) (range n)) dims))))))
+
 (defn fget
   "The value of field `fname` of the struct `r` views, decoded by the
-  SDNA: numbers, strings (char arrays), vectors (other arrays), Ptrs
-  (pointers; nil for NULL) or views of embedded structs. nil when the
-  struct has no such field in this file."
+  SDNA (see `field-reader`); nil when the struct has no such field in
+  this file."
   [^Ref r fname]
   (when r
-    (when-let [{:keys [ptr? dims ^long n type tlen struct ^long offset]} (field-info r fname)]
-      (let [bf (.bf r)
-            off (+ (.offset r) offset)
-            ^long tlen tlen]
-        (cond
-          ptr? (if (empty? dims)
-                 (read-ptr bf off (.group r))
-                 (shape (map #(read-ptr bf (+ off (* (long %) (long (:ptr-size bf)))) (.group r))
-                             (range n))
-                        dims))
-          struct (let [lay (layout bf struct)]
-                   (if (empty? dims)
-                     (->Ref bf lay off (.end r) (.group r))
-                     (shape (map #(->Ref bf lay (+ off (* (long %) tlen)) (.end r) (.group r))
-                                 (range n))
-                            dims)))
-          (and (= type "char") (= 1 (count dims))) (c-string bf off n)
-          (empty? dims) (read-prim (:buf bf) type tlen off)
-          :else (shape (map #(read-prim (:buf bf) type tlen (+ off (* (long %) tlen)))
-                            (range n))
-                       dims))))))
+    (when-let [fi (get (:by-name (.layout r)) fname)]
+      ((:read fi) r))))
 
 (defn fget-in
   "Follow a path of field names through embedded structs."

@@ -102,79 +102,81 @@
       (dotimes [k 3] (aset v k (/ (aget v k) l))))
     v))
 
-(defn face-normals
-  "Unit normal of each face (Blender coordinates), as double arrays."
-  [{:keys [^floats positions ^ints starts ^ints counts ^ints corners]}]
-  (vec (for [i (range (alength starts))
-             :let [s (aget starts i) n (aget counts i)
-                   pts (mapv #(mesh/vertex positions (aget corners (+ s (long %)))) (range n))]]
-         (normalize! (double-array (if (>= n 3) (mesh/newell-normal pts) [0 0 1]))))))
-
 (defn vertex-normals
-  "Unit normal of each vertex: the sum of the area-weighted normals of
-  the smooth faces around it."
-  [{:keys [^floats positions ^ints starts ^ints counts ^ints corners ^booleans smooth]}]
-  (let [nv (quot (alength positions) 3)
-        acc (double-array (* 3 nv))]
+  "For each vertex, the sum of the (area-weighted) Newell normals of the
+  smooth faces around it, as a flat double array; normalised when
+  used."
+  ^doubles [{:keys [^floats positions ^ints starts ^ints counts ^ints corners ^booleans smooth]}]
+  (let [acc (double-array (alength positions))
+        nrm (double-array 3)]
     (dotimes [i (alength starts)]
       (when (aget smooth i)
-        (let [s (aget starts i) n (aget counts i)
-              pts (mapv #(mesh/vertex positions (aget corners (+ s (long %)))) (range n))
-              [x y z] (if (>= n 3) (mesh/newell-normal pts) [0.0 0.0 0.0])]
+        (let [s (aget starts i) n (aget counts i)]
+          (mesh/face-normal! positions corners s n nrm)
           (dotimes [k n]
-            (let [v (aget corners (+ s k))]
-              (aset acc (* 3 v) (+ (aget acc (* 3 v)) (double x)))
-              (aset acc (+ 1 (* 3 v)) (+ (aget acc (+ 1 (* 3 v))) (double y)))
-              (aset acc (+ 2 (* 3 v)) (+ (aget acc (+ 2 (* 3 v))) (double z))))))))
+            (let [v (* 3 (aget corners (+ s k)))]
+              (dotimes [d 3]
+                (aset acc (+ v d) (+ (aget acc (+ v d)) (aget nrm d)))))))))
     acc))
 
-(defn- apply3
-  "3x3 `m` (rows) times [x y z], written to `out` at `i`."
-  [m ^floats out i x y z]
-  (let [[[a b c] [d e f] [g h k]] m
-        i (long i)
-        x (double x) y (double y) z (double z)]
-    (aset out i (float (+ (* a x) (* b y) (* c z))))
-    (aset out (+ i 1) (float (+ (* d x) (* e y) (* f z))))
-    (aset out (+ i 2) (float (+ (* g x) (* h y) (* k z))))))
+(defn- put3!
+  "Write 3x3 `m` (flat, rows) times (x y z), normalised when `unit?`,
+  into float array `out` at `i`."
+  [^doubles m ^floats out i ^doubles v unit?]
+  (let [i (long i)
+        x (aget v 0) y (aget v 1) z (aget v 2)
+        rx (+ (* (aget m 0) x) (* (aget m 1) y) (* (aget m 2) z))
+        ry (+ (* (aget m 3) x) (* (aget m 4) y) (* (aget m 5) z))
+        rz (+ (* (aget m 6) x) (* (aget m 7) y) (* (aget m 8) z))
+        l (if unit? (Math/sqrt (+ (* rx rx) (* ry ry) (* rz rz))) 1.0)
+        l (if (> l 1e-30) l 1.0)]
+    (aset out i (float (/ rx l)))
+    (aset out (+ i 1) (float (/ ry l)))
+    (aset out (+ i 2) (float (/ rz l)))))
 
 (defn mesh-buffers
-  "Position, normal and index arrays for the faces of mesh data `md`
-  whose slot is in `slots`: a vertex per face corner (so flat faces
-  keep their own normal), positions mapped by 3x3 `pm` (Blender to Y
-  up, and any residual) and normals by `nm`."
+  "Position, normal and index arrays for faces `face-ids` of mesh data
+  `md`: a vertex per face corner (so flat faces keep their own normal;
+  smooth ones get their vertex's), positions mapped by 3x3 `pm`
+  (Blender to Y up, and any residual) and normals by `nm`."
   [md face-ids pm nm]
   (let [{:keys [^floats positions ^ints starts ^ints counts ^ints corners ^booleans smooth]} md
-        fnorm (face-normals md)
-        ^doubles vnorm (vertex-normals md)
+        pm (double-array (flatten pm))
+        nm (double-array (flatten nm))
+        ^doubles vnorm (when (some #(aget smooth (int %)) face-ids) (vertex-normals md))
         nverts (reduce + (map #(aget counts (int %)) face-ids))
         ntris (reduce + (map #(max 0 (- (aget counts (int %)) 2)) face-ids))
         pos (float-array (* 3 nverts))
         nor (float-array (* 3 nverts))
-        idx (int-array (* 3 ntris))]
+        idx (int-array (* 3 ntris))
+        fnrm (double-array 3)
+        v3 (double-array 3)]
     (loop [[f & more] face-ids vbase 0 tbase 0]
       (if (nil? f)
         {:positions pos :normals nor :indices idx}
-        (let [s (aget starts (int f)) n (aget counts (int f))
-              ^doubles fnv (fnorm f)
-              pts (mapv #(mesh/vertex positions (aget corners (+ s (long %)))) (range n))
-              tris (mesh/triangulate pts)]
+        (let [f (long f)
+              s (aget starts f) n (aget counts f)
+              _ (mesh/face-normal! positions corners s n fnrm)
+              tris (mesh/face-triangles md f fnrm)
+              smooth? (aget smooth f)]
           (dotimes [k n]
-            (let [v (aget corners (+ s k))
-                  o (* 3 (+ vbase k))
-                  ^doubles nv (if (aget smooth (int f))
-                                (normalize! (double-array [(aget vnorm (* 3 v)) (aget vnorm (+ 1 (* 3 v)))
-                                                           (aget vnorm (+ 2 (* 3 v)))]))
-                                fnv)]
-              (apply3 pm pos o (aget positions (* 3 v)) (aget positions (+ 1 (* 3 v)))
-                      (aget positions (+ 2 (* 3 v))))
-              (apply3 nm nor o (aget nv 0) (aget nv 1) (aget nv 2))))
-          (doseq [[t [a b c]] (map-indexed vector tris)]
-            (let [o (* 3 (+ tbase (long t)))]
-              (aset idx o (int (+ vbase (long a))))
-              (aset idx (+ o 1) (int (+ vbase (long b))))
-              (aset idx (+ o 2) (int (+ vbase (long c))))))
-          (recur more (+ vbase n) (+ tbase (count tris))))))))
+            (let [v (* 3 (aget corners (+ s k)))
+                  o (* 3 (+ vbase k))]
+              (dotimes [d 3] (aset v3 d (double (aget positions (+ v d)))))
+              (put3! pm pos o v3 false)
+              (if smooth?
+                (do (dotimes [d 3] (aset v3 d (aget vnorm (+ v d))))
+                    (put3! nm nor o v3 true))
+                (put3! nm nor o fnrm true))))
+          (let [tend (loop [[[a b c] & ts] tris t tbase]
+                       (if (nil? a)
+                         t
+                         (let [o (* 3 t)]
+                           (aset idx o (int (+ vbase (long a))))
+                           (aset idx (+ o 1) (int (+ vbase (long b))))
+                           (aset idx (+ o 2) (int (+ vbase (long c))))
+                           (recur ts (inc t)))))]
+            (recur more (+ vbase n) (long tend))))))))
 
 (defn jme-mesh
   "A jME Mesh of the arrays from `mesh-buffers`."

@@ -9,15 +9,29 @@
   (mapv (fn [r] (mapv (fn [c] (if (= r c) 1.0 0.0)) (range n))) (range n)))
 
 (defn mat-mul
-  "The product of matrices `a` and `b`."
+  "The product of matrices `a` and `b` (vectors of rows)."
   [a b]
-  (let [bt (apply mapv vector b)]
-    (mapv (fn [row] (mapv (fn [col] (reduce + (map * row col))) bt)) a)))
+  (let [k (count b)
+        m (count (first b))]
+    (mapv (fn [row]
+            (mapv (fn [j]
+                    (loop [t 0 acc 0.0]
+                      (if (< t k)
+                        (recur (inc t) (+ acc (* (double (nth row t))
+                                                 (double (nth (nth b t) j)))))
+                        acc)))
+                  (range m)))
+          a)))
 
 (defn mat-vec
   "Matrix `m` times column vector `v`."
   [m v]
-  (mapv (fn [row] (reduce + (map * row v))) m))
+  (mapv (fn [row]
+          (loop [t 0 acc 0.0]
+            (if (< t (count v))
+              (recur (inc t) (+ acc (* (double (nth row t)) (double (nth v t)))))
+              acc)))
+        m))
 
 (defn transpose
   "The transpose of `m`."
@@ -106,12 +120,16 @@
   [[1.0 0.0 0.0] [0.0 0.0 1.0] [0.0 -1.0 0.0]])
 
 (defn to-y-up
-  "A Blender 4x4 (or 3x3) as it reads in jME's basis: C M C^-1."
+  "A Blender 4x4 (or 3x3) as it reads in jME's basis: C M C^-1. C only
+  permutes axes and flips one, so (C M C^-1)[i][j] is s_i s_j M[p_i][p_j]
+  with p = (0 2 1 3) and s = (1 1 -1 1)."
   [m]
-  (if (= 4 (count m))
-    (let [c4 (mat3->mat4 y-up [0 0 0])]
-      (mat-mul (mat-mul c4 m) (transpose c4)))
-    (mat-mul (mat-mul y-up m) (transpose y-up))))
+  (let [p [0 2 1 3] s [1.0 1.0 -1.0 1.0]
+        n (count m)]
+    (mapv (fn [i] (mapv (fn [j] (* (double (s i)) (double (s j))
+                                   (double (get-in m [(p i) (p j)]))))
+                        (range n)))
+          (range n))))
 
 (defn det3
   "Determinant of a 3x3."

@@ -134,12 +134,12 @@
   [bf mesh attrs]
   (let [n (long (or (f/fget mesh "totvert") 0))]
     (if-let [{:keys [data]} (named-data bf mesh attrs "vdata" "position" 0)]
-      (read-floats3 bf mesh data n 12 0 "position")
+      (or (read-floats3 bf mesh data n 12 0 "position") (float-array 0))
       (let [ptr (or (f/fget mesh "mvert") (legacy-layer bf mesh "vdata" 0))
             sa (struct-array bf ptr "MVert" ["co"])]
-        (if (and sa (get-in sa [:fields "co"]))
-          (read-floats3 bf mesh ptr n (:stride sa) (get-in sa [:fields "co" :offset]) "MVert")
-          (float-array 0))))))
+        (or (when (and sa (get-in sa [:fields "co"]))
+              (read-floats3 bf mesh ptr n (:stride sa) (get-in sa [:fields "co" :offset]) "MVert"))
+            (float-array 0))))))
 
 (defn- bools
   "A boolean attribute (one byte per element), as a boolean array, or
@@ -149,8 +149,10 @@
     (if single?
       (when-let [v (read-small bf mesh data 1 1 0 1 aname)]
         (boolean-array (repeat n (not (zero? (aget ^ints v 0))))))
-      (when-let [v (read-small bf mesh data n 1 0 1 aname)]
-        (boolean-array (map #(not (zero? (long %))) v))))))
+      (when-let [^ints v (read-small bf mesh data n 1 0 1 aname)]
+        (let [b (boolean-array n)]
+          (dotimes [i n] (aset b i (not (zero? (aget v i)))))
+          b)))))
 
 (defn- ints-attr
   "An int attribute, or nil when absent."
@@ -160,6 +162,15 @@
       (when-let [v (read-ints bf mesh data 1 4 0 aname)]
         (int-array (repeat n (aget ^ints v 0))))
       (read-ints bf mesh data n 4 0 aname))))
+
+(defn- negate
+  "Smooth flags from `sharp_face` flags: their negation, or all smooth
+  when the mesh has no such attribute."
+  ^booleans [^booleans sharp np]
+  (let [b (boolean-array np true)]
+    (when sharp
+      (dotimes [i (min (long np) (alength sharp))] (aset b i (not (aget sharp i)))))
+    b))
 
 (defn- polys-from-offsets
   "Faces from `poly_offset_indices` + `.corner_vert` (3.6 and later)."
@@ -172,11 +183,13 @@
         mats (ints-attr bf mesh attrs "pdata" "material_index" 2 np)
         sharp (bools bf mesh attrs "pdata" "sharp_face" 2 np)]
     (when (and offsets corners)
-      {:starts (int-array (take np offsets))
-       :counts (int-array (map - (rest offsets) offsets))
+      {:starts (java.util.Arrays/copyOf ^ints offsets (int np))
+       :counts (let [^ints o offsets c (int-array np)]
+                 (dotimes [i np] (aset c i (- (aget o (inc i)) (aget o i))))
+                 c)
        :corners corners
        :mats (or mats (int-array np))
-       :smooth (if sharp (boolean-array (map not sharp)) (boolean-array np true))})))
+       :smooth (negate sharp np)})))
 
 (defn- polys-from-mpoly
   "Faces from MPoly + MLoop (2.63-3.5), or MPoly with `.corner_vert`."
@@ -199,8 +212,10 @@
             sharp (bools bf mesh attrs "pdata" "sharp_face" 2 np)]
         (when (and starts counts corners)
           {:starts starts :counts counts :corners corners :mats mats
-           :smooth (cond sharp (boolean-array (map not sharp))
-                         flags (boolean-array (map #(odd? (long %)) flags))
+           :smooth (cond sharp (negate sharp np)
+                         flags (let [^ints fl flags b (boolean-array np)]
+                                 (dotimes [i np] (aset b i (boolean (odd? (aget fl i)))))
+                                 b)
                          :else (boolean-array np))})))))
 
 (defn- polys-from-mface
@@ -215,13 +230,25 @@
             mats (or (field-ints bf mesh mf "mat_nr" nf "MFace") (int-array nf))
             flags (field-ints bf mesh mf "flag" nf "MFace")]
         (when (and v1 v2 v3 v4)
-          (let [counts (int-array (map #(if (zero? (long %)) 3 4) v4))
-                starts (int-array (reductions + 0 (butlast counts)))
-                corners (int-array (mapcat (fn [a b c d n] (if (= 3 n) [a b c] [a b c d]))
-                                           v1 v2 v3 v4 counts))]
-            {:starts starts :counts counts :corners corners :mats mats
-             :smooth (if flags (boolean-array (map #(odd? (long %)) flags))
-                         (boolean-array nf))}))))))
+          (let [^ints v1 v1 ^ints v2 v2 ^ints v3 v3 ^ints v4 v4 ^ints flags flags
+                counts (int-array nf)
+                starts (int-array nf)
+                corners (int-array (* 4 nf))
+                smooth (boolean-array nf)
+                used (loop [i 0 c 0]
+                       (if (= i nf)
+                         c
+                         (let [quad? (not (zero? (aget v4 i)))]
+                           (aset starts i (int c))
+                           (aset counts i (int (if quad? 4 3)))
+                           (aset corners c (aget v1 i))
+                           (aset corners (+ c 1) (aget v2 i))
+                           (aset corners (+ c 2) (aget v3 i))
+                           (when quad? (aset corners (+ c 3) (aget v4 i)))
+                           (when flags (aset smooth i (boolean (odd? (aget flags i)))))
+                           (recur (inc i) (+ c (if quad? 4 3))))))]
+            {:starts starts :counts counts :corners (java.util.Arrays/copyOf corners (int used))
+             :mats mats :smooth smooth}))))))
 
 (defn- check-polys
   "Every face must lie within the corner array and every corner name a
@@ -357,6 +384,55 @@
               (if (or (> n 256) (convex? p2))
                 (fan (vec (range n)))
                 (ear-clip p2))))))
+
+(defn face-normal!
+  "Write into `out` the Newell normal of the face whose corners are
+  `corners[s..s+n)`, vertices in flat `pos`; no allocation, for the
+  mesh builder's inner loop."
+  ^doubles [^floats pos ^ints corners s n ^doubles out]
+  (let [s (long s) n (long n)]
+   (loop [i 0 x 0.0 y 0.0 z 0.0]
+    (if (= i n)
+      (doto out (aset 0 x) (aset 1 y) (aset 2 z))
+      (let [a (* 3 (aget corners (+ s i)))
+            b (* 3 (aget corners (+ s (mod (inc i) n))))
+            ax (aget pos a) ay (aget pos (+ a 1)) az (aget pos (+ a 2))
+            bx (aget pos b) by (aget pos (+ b 1)) bz (aget pos (+ b 2))]
+        (recur (inc i)
+               (+ x (* (- ay by) (+ az bz)))
+               (+ y (* (- az bz) (+ ax bx)))
+               (+ z (* (- ax bx) (+ ay by)))))))))
+
+(defn- tri-dot
+  "Dot product of normal `nrm` with the normal of triangle a b c
+  (vertex indices into flat `pos`)."
+  [^floats pos ^doubles nrm a b c]
+  (let [a (* 3 (long a)) b (* 3 (long b)) c (* 3 (long c))
+        ux (- (aget pos b) (aget pos a)) uy (- (aget pos (+ b 1)) (aget pos (+ a 1)))
+        uz (- (aget pos (+ b 2)) (aget pos (+ a 2)))
+        vx (- (aget pos c) (aget pos a)) vy (- (aget pos (+ c 1)) (aget pos (+ a 1)))
+        vz (- (aget pos (+ c 2)) (aget pos (+ a 2)))]
+    (+ (* (aget nrm 0) (- (* uy vz) (* uz vy)))
+       (* (aget nrm 1) (- (* uz vx) (* ux vz)))
+       (* (aget nrm 2) (- (* ux vy) (* uy vx))))))
+
+(defn face-triangles
+  "Triangles of face `f` of mesh data `md` as corner triples (0-based
+  within the face). Triangles as they are; a quad is split along the
+  diagonal that leaves both halves facing the face's way (right for
+  concave quads too); bigger faces go to `triangulate`."
+  [{:keys [^floats positions ^ints starts ^ints counts ^ints corners]} ^long f ^doubles nrm]
+  (let [s (aget starts f) n (aget counts f)]
+    (case n
+      3 [[0 1 2]]
+      4 (let [v (fn [^long k] (long (aget corners (+ s k))))]
+          (if (and (pos? (tri-dot positions nrm (v 0) (v 1) (v 2)))
+                   (pos? (tri-dot positions nrm (v 0) (v 2) (v 3))))
+            [[0 1 2] [0 2 3]]
+            [[1 2 3] [1 3 0]]))
+      (if (< n 3)
+        []
+        (triangulate (mapv #(vertex positions (aget corners (+ s (long %)))) (range n)))))))
 
 (defn triangle-count
   "How many triangles the faces of mesh data `md` make: n-2 per face of

@@ -1,0 +1,155 @@
+(ns cortex.blender.physics
+  "Blender's own rigid body physics as data: the settings of the Physics
+  tab's Rigid Body (RigidBodyOb), Rigid Body Constraint (RigidBodyCon)
+  and the scene's Rigid Body World, read through the file's SDNA by
+  field name. Codes and flags are those of Blender's
+  DNA_rigidbody_types.h."
+  (:require [cortex.blender.file :as f]))
+
+(def body-types
+  "eRigidBodyOb_Type: what part a rigid body plays."
+  {0 "ACTIVE" 1 "PASSIVE"})
+
+(def shapes
+  "eRigidBody_Shape, named as Blender's Python API names them
+  (RB_SHAPE_CONVEXH is CONVEX_HULL, RB_SHAPE_TRIMESH is MESH)."
+  {0 "BOX" 1 "SPHERE" 2 "CAPSULE" 3 "CYLINDER" 4 "CONE" 5 "CONVEX_HULL"
+   6 "MESH" 7 "COMPOUND"})
+
+(def body-flags
+  "The bits of eRigidBodyOb_Flag a body needs, by their Python names.
+  \"disabled\" is the inverse of the Physics tab's Dynamic checkbox."
+  {"kinematic" 0 "use_deactivation" 3 "use_start_deactivated" 4
+   "disabled" 5 "use_margin" 6 "use_deform" 7})
+
+(def constraint-types
+  "eRigidBodyCon_Type; codes 2, 4, 7 and 10 are unused by Blender."
+  {0 "POINT" 1 "HINGE" 3 "SLIDER" 5 "GENERIC" 6 "GENERIC_SPRING"
+   8 "FIXED" 9 "PISTON" 11 "MOTOR"})
+
+(def spring-types
+  "eRigidBodyCon_SpringType: Bullet's two spring constraints."
+  {0 "SPRING1" 1 "SPRING2"})
+
+(def constraint-flags
+  "The bits of eRigidBodyCon_Flag, by their Python names."
+  (merge {"enabled" 0 "disable_collisions" 2 "use_breaking" 3
+          "use_override_solver_iterations" 4
+          "use_limit_lin_x" 5 "use_limit_lin_y" 6 "use_limit_lin_z" 7
+          "use_limit_ang_x" 8 "use_limit_ang_y" 9 "use_limit_ang_z" 10
+          "use_spring_x" 11 "use_spring_y" 12 "use_spring_z" 13
+          "use_motor_lin" 14 "use_motor_ang" 15
+          "use_spring_ang_x" 16 "use_spring_ang_y" 17 "use_spring_ang_z" 18}))
+
+(def body-fields
+  "The RigidBodyOb number fields kept, by their DNA names."
+  ["mass" "friction" "restitution" "margin" "lin_damping" "ang_damping"
+   "lin_sleep_thresh" "ang_sleep_thresh" "col_groups" "mesh_source"])
+
+(def constraint-fields
+  "The RigidBodyCon number fields kept, by their DNA names."
+  (concat ["num_solver_iterations" "breaking_threshold"
+           "motor_lin_target_velocity" "motor_ang_target_velocity"
+           "motor_lin_max_impulse" "motor_ang_max_impulse"]
+          (for [k ["lin" "ang"] a ["x" "y" "z"] e ["lower" "upper"]]
+            (str "limit_" k "_" a "_" e))
+          (for [p ["spring_stiffness_" "spring_damping_"]
+                a ["x" "y" "z" "ang_x" "ang_y" "ang_z"]]
+            (str p a))))
+
+(defn- numbers
+  "The fields `names` that struct `r` has, name -> value."
+  [r names]
+  (into {} (for [n names
+                 :when (f/has-field? r n)
+                 :let [v (f/fget r n)]
+                 :when (number? v)]
+             [n v])))
+
+(defn flag-bits
+  "Each name of `bits` (name -> bit number) with whether `flag` has
+  that bit set."
+  [flag bits]
+  (into {} (for [[k b] bits] [k (bit-test (long flag) (long b))])))
+
+(defn- code-name
+  "The name `table` gives code `c`, or \"UNKNOWN\" when it has none
+  (the code itself stays under its own key for error messages)."
+  [table c]
+  (get table (some-> c long) "UNKNOWN"))
+
+(defn rigid-body
+  "The rigid body settings of Object struct `ob` as a map with String
+  keys (so that jME can keep it as user data), or nil when the object
+  has no rigid body. \"type\" and \"shape\" are names, \"type_code\"
+  and \"shape_code\" the numbers the file holds, \"flag\" the raw
+  flags, decoded into \"kinematic\", \"disabled\", \"use_margin\"..."
+  [bf ob]
+  (when-let [rb (f/deref-ptr bf (f/fget ob "rigidbody_object") "RigidBodyOb")]
+    (let [flag (long (or (f/fget rb "flag") 0))
+          type (f/fget rb "type")
+          shape (f/fget rb "shape")]
+      (merge (numbers rb body-fields)
+             (flag-bits flag body-flags)
+             {"type" (code-name body-types type) "type_code" (or type -1)
+              "shape" (code-name shapes shape) "shape_code" (or shape -1)
+              "flag" flag}))))
+
+(defn- object-name
+  "The name of the Object pointer `ptr` points at, or nil."
+  [bf ptr]
+  (some-> (f/deref-ptr bf ptr "Object") f/id-name))
+
+(defn rigid-body-constraint
+  "The rigid body constraint of Object struct `ob` as a map with String
+  keys, or nil when it has none: \"type\" (a name) and \"type_code\",
+  \"ob1\" and \"ob2\" (the names of the objects it joins; absent when
+  the pointer is empty or dangling), \"spring_type\", the raw \"flag\"
+  and its bits (\"enabled\", \"disable_collisions\", \"use_limit_ang_z\"...),
+  and every limit, spring, motor and breaking number by its DNA name."
+  [bf ob]
+  (when-let [rbc (f/deref-ptr bf (f/fget ob "rigidbody_constraint") "RigidBodyCon")]
+    (let [flag (long (or (f/fget rbc "flag") 0))
+          type (f/fget rbc "type")
+          ob1 (object-name bf (f/fget rbc "ob1"))
+          ob2 (object-name bf (f/fget rbc "ob2"))]
+      (cond-> (merge (numbers rbc constraint-fields)
+                     (flag-bits flag constraint-flags)
+                     {"type" (code-name constraint-types type) "type_code" (or type -1)
+                      "spring_type" (code-name spring-types (f/fget rbc "spring_type"))
+                      "flag" flag})
+        ob1 (assoc "ob1" ob1)
+        ob2 (assoc "ob2" ob2)))))
+
+(defn user-data
+  "What an object's Node carries of Blender's physics: user data
+  \"blender-rigid-body\" and \"blender-rigid-body-constraint\", each
+  present only when the object has one."
+  [bf ob]
+  (let [rb (rigid-body bf ob)
+        rbc (rigid-body-constraint bf ob)]
+    (cond-> {}
+      rb (assoc "blender-rigid-body" rb)
+      rbc (assoc "blender-rigid-body-constraint" rbc))))
+
+(defn rigid-body-world
+  "The Rigid Body World of Scene struct `sc`, or nil when it has none:
+  \"time_scale\", \"substeps_per_frame\" (older files: \"steps_per_second\"),
+  \"num_solver_iterations\", \"flag\" with \"muted\" and
+  \"use_split_impulse\", and \"effector_gravity\" (how much of the
+  scene's gravity its bodies feel); and the scene's own \"gravity\"
+  (Blender axes) and \"use_gravity\"."
+  [bf sc]
+  (when-let [w (f/deref-ptr bf (f/fget sc "rigidbody_world") "RigidBodyWorld")]
+    (let [flag (long (or (f/fget w "flag") 0))
+          ew (f/deref-ptr bf (f/fget w "effector_weights") "EffectorWeights")
+          phys (f/fget sc "physics_settings")]
+      (merge (numbers w ["time_scale" "substeps_per_frame" "steps_per_second"
+                         "num_solver_iterations"])
+             {"flag" flag
+              "muted" (bit-test flag 0)
+              "use_split_impulse" (bit-test flag 2)
+              "effector_gravity" (or (f/fget ew "global_gravity") 1.0)}
+             (when-let [g (f/fget phys "gravity")]
+               {"gravity" g
+                "use_gravity" (bit-test (long (or (f/fget phys "flag") 1)) 0)})))))
