@@ -251,25 +251,32 @@
   [n total]
   (if total
     (format "recording: frame %d of %d (%d%%)" n total (quot (* 100 n) total))
-    (format "recording: %d frames" n)))
+    (format "recording: %d frame%s" n (if (= 1 n) "" "s"))))
 
 (defn progress-printer
-  "A function of the frame count that keeps a counter up to date on one
-  line of standard error: every `every` frames, and at `total`."
+  "A progress function for `record!` that keeps a counter up to date on
+  one line of standard error: at the first frame, every `every` frames,
+  and when the recording is done (then ending the line)."
   ([] (progress-printer nil))
   ([total] (progress-printer total 10))
   ([total every]
-   (fn [n]
-     (when (or (zero? (mod n every)) (= n total) (= n 1))
-       (.print System/err (str "\r" (progress-line n total)))
-       (.flush System/err)))))
+   (let [show! (fn [n end]
+                 (.print System/err (str "\r" (progress-line n total) end))
+                 (.flush System/err))]
+     (fn
+       ([n]
+        (when (or (= n 1) (zero? (mod n every)))
+          (show! n "")))
+       ([n done?]
+        (when done? (show! n "\n")))))))
 
 (defn record!
   "Write every frame `world` draws, from its first, to folder `dir` as
   frame-000001.png, frame-000002.png, ... (see `frame-file`), removing
   frames an earlier recording left there. Options: :progress, a
-  function called with the number of frames written so far (default:
-  a counter on standard error; nil for none). Call it from a setup
+  function called with the number of frames written so far after each
+  frame, and with that number and true at the end (default: a counter
+  on standard error, see `progress-printer`; nil for none). Call it from a setup
   function or before the world starts. Throws an ex-info when `dir`
   cannot be written. Returns the world."
   ([world dir] (record! world dir {}))
@@ -282,7 +289,7 @@
                      (when progress (progress @n)))
                    (fn []
                      (when (and progress (pos? @n))
-                       (.println System/err)))))))
+                       (progress @n true)))))))
 
 (defn mp4-args
   "ffmpeg's arguments to make `out` from the frames in `dir`, played at
