@@ -335,8 +335,8 @@
   frames."
   ([dir fps] (make-videos! dir fps {}))
   ([dir fps {:keys [name] :as options}]
-   (let [folder (.getCanonicalFile (io/file dir))
-         name (or name (.getName folder))
+   (let [folder (io/file dir)
+         name (or name (.getName (.getCanonicalFile folder)))
          program (ffmpeg)]
      (cond
        (empty? (frames-in folder))
