@@ -43,7 +43,7 @@
   "Print a table of median load times and ratios."
   [& [runs]]
   (.setLevel (Logger/getLogger "com.jme3") Level/OFF)
-  (let [runs (if runs (Long/parseLong runs) 11)
+  (let [runs (if runs (Long/parseLong runs) 21)
         am (blender/asset-manager)
         theirs-am (doto (DesktopAssetManager. true)
                     (.registerLocator "/" FileLocator)

@@ -348,7 +348,10 @@
       (let [g (if (= "DATA" (:code b)) g i)]
         (recur more g (inc i) (conj! out (assoc b :group g)))))))
 
-(defonce ^:private catalogues
+(def ^:private catalogues
+  "Catalogues seen, by pointer size, byte order and hash of the DNA1
+  bytes. A plain def, not defonce: reloading this namespace must drop
+  layouts whose readers were compiled against the old classes."
   (atom {}))
 
 (defn- catalogue
@@ -395,8 +398,8 @@
            :layouts layouts
            :struct-index struct-index
            :ids (ptr-map (remove #(= "DATA" (:code %)) blocks))
-           :groups (into {} (for [[g bs] (group-by :group blocks)] [g (ptr-map bs)]))
-           :all (when (= (count olds) (count (distinct olds))) (ptr-map blocks)))))
+           :groups (into {} (for [[g bs] (group-by :group blocks)] [g (delay (ptr-map bs))]))
+           :all (delay (when (= (count olds) (count (distinct olds))) (ptr-map blocks))))))
 
 (defrecord Ptr [^long addr group])
 
@@ -435,9 +438,9 @@
   [bf ptr]
   (when ptr
     (let [addr (long (:addr ptr))]
-      (or (lookup (get (:groups bf) (:group ptr)) addr)
+      (or (lookup (some-> (get (:groups bf) (:group ptr)) deref) addr)
           (lookup (:ids bf) addr)
-          (lookup (:all bf) addr)))))
+          (lookup @(:all bf) addr)))))
 
 (defn block-ref
   "A view of the `i`th struct of a block, typed by the block's SDNA
