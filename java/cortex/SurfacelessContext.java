@@ -164,7 +164,14 @@ public final class SurfacelessContext extends LwjglContext implements Runnable {
             try {
                 listener.destroy();
             } finally {
-                try { destroyEgl(); } finally { internalDestroy(); }
+                try {
+                    // forget every GL object jME made: cached shaders and
+                    // textures would otherwise keep names from this context
+                    // and draw nothing in the next one
+                    if (renderer != null && created.get()) renderer.cleanup();
+                } finally {
+                    try { destroyEgl(); } finally { internalDestroy(); }
+                }
             }
         }
     }

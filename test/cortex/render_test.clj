@@ -102,6 +102,14 @@
           (is (= (.getWorldTranslation box) (.getWorldTranslation box2)))
           (is (= (.getWorldRotation box) (.getWorldRotation box2))))))))
 
+(deftest one-offscreen-world-after-another
+  (dotimes [i 3]
+    (let [[_ w] (falling-box-world)
+          frames (atom [])]
+      (render/grab-frames! w (fn [image] (swap! frames conj (seq (red-rows image)))))
+      (render/run-offscreen! w 5 {:size [160 120]})
+      (is (every? some? @frames) (str "world " (inc i) " drew the box in every frame")))))
+
 (deftest recording-refuses-what-cannot-work
   (let [file (io/file (temp-dir) "not-a-folder")]
     (spit file "")
