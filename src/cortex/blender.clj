@@ -104,7 +104,10 @@
    (let [f (io/file (str model))]
      (if (.isFile f)
        (load-bytes am (str model) (guarded (str model) #(read-all f)))
-       (.loadModel am (ModelKey. (str model)))))))
+       (try (.loadModel am (ModelKey. (str model)))
+            (catch com.jme3.asset.AssetNotFoundException e
+              (throw (ex-info (str model ": no such file, nor asset under assets/ or on the classpath")
+                              {:file (str model)} e))))))))
 
 (defn meta-data
   "The custom property `key` of `spatial` (a Blender object's Node), or

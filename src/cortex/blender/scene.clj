@@ -313,9 +313,10 @@
 
 (defn scene-data
   "The scene of parsed file `bf` as data: {:scene name, :objects [...]},
-  each object with :name, :type, :parent (name or nil), :world (4x4
-  rows, Blender coordinates), :mesh (mesh data or nil), :materials,
-  :properties and more. Objects are those of the current scene; a
+  each object with :name, :type, :parent (the parent's name, even when
+  the parent is not in the scene), :parent-key (the parent's key when it
+  is in the scene), :world (4x4 rows, Blender coordinates), :mesh (mesh
+  data or nil), :materials, :properties and more. Objects are those of the current scene; a
   file whose scene lists none gives every object it holds."
   [bf]
   (let [sc (current-scene bf)
@@ -328,13 +329,13 @@
         worlds (world-matrices all)
         infos (vec (take (count infos) all))
         keys (set (map :key infos))
-        names (into {} (map (juxt :key :name)) infos)]
+        names (into {} (map (juxt :key :name)) all)]
     {:scene (if sc (f/id-name sc) "Scene")
      :objects (mapv (fn [{:keys [parent-key mesh-ref] :as o}]
                       (-> o
                           (assoc :world (worlds (:key o))
                                  :parent-key (when (keys parent-key) parent-key)
-                                 :parent (when (keys parent-key) (names parent-key))
+                                 :parent (names parent-key)
                                  :mesh (when mesh-ref (mesh/mesh-data bf mesh-ref)))
                           (dissoc :mesh-ref)))
                     infos)}))
