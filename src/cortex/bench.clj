@@ -301,10 +301,12 @@
   "What a full and a --quick benchmark measure."
   {:full {:build {:sizes [10 100 300 1000] :warmup 2 :runs 7}
           :sim {:sizes [10 100 300] :frames 300 :runs 3}
-          :heap {:size 1000 :frames 120}}
+          :heap {:size 1000 :frames 120}
+          :blender-load-runs 11}
    :quick {:build {:sizes [10 100 300] :warmup 1 :runs 3}
            :sim {:sizes [10 100] :frames 120 :runs 1}
-           :heap {:size 1000 :frames nil}}})
+           :heap {:size 1000 :frames nil}
+           :blender-load-runs 3}})
 
 (def sim-budget
   "Segment-frames a simulation run should at least have."
@@ -400,23 +402,50 @@
              (merge {:creature (str kind "-" size)}
                     (measure-heap! (generated kind size 0) frames))))))
 
-(def blender-load-benchmarks
-  "Where the .blend reader's load-time benchmark may live: functions of
-  no arguments returning rows (maps)."
-  ['cortex.bench.blender/bench-rows
-   'cortex.bench.blender/run-bench
-   'cortex.bench.blender/bench])
+(defn- try-resolve
+  "The value of the var named by the qualified symbol `sym`, loading its
+  namespace, or nil when there is no such namespace or var."
+  [sym]
+  (try (some-> (requiring-resolve sym) deref) (catch Throwable _ nil)))
+
+(defn- jme3-blender-loader
+  "A function loading a .blend file (by path) with jme3-blender, from
+  disk every time, or nil when jme3-blender is not on the classpath."
+  []
+  (when-let [loader (try (Class/forName "com.jme3.scene.plugins.blender.BlenderLoader")
+                         (catch ClassNotFoundException _ nil))]
+    (let [am (doto (com.jme3.asset.DesktopAssetManager. true)
+               (.registerLocator "/" com.jme3.asset.plugins.FileLocator)
+               (.registerLoader ^Class loader (into-array String ["blend"])))]
+      (fn [^String path]
+        (.clearCache am)
+        (.loadModel am path)))))
 
 (defn run-blender-load!
-  "The .blend load-time rows of the reader's own benchmark, or one row
-  saying it is not there (yet)."
-  []
-  (if-let [f (some #(try (some-> (requiring-resolve %) deref) (catch Throwable _ nil))
-                   blender-load-benchmarks)]
-    (do (progress "blender load times")
-        (vec (f)))
-    [{:skipped (str "PENDING: no .blend load benchmark found (looked for "
-                    (str/join ", " blender-load-benchmarks) ")")}]))
+  "Median load times of the Blender creatures with cortex's reader and
+  with jme3-blender, measured with cortex.blender-bench's `medians` over
+  `runs` rounds, or one row saying why there are none."
+  [runs]
+  (let [medians (try-resolve 'cortex.blender-bench/medians)
+        asset-manager (try-resolve 'cortex.blender/asset-manager)
+        load (try-resolve 'cortex.blender/load-blender-model)]
+    (if-not (and medians asset-manager load)
+      [{:skipped (str "PENDING: the reader's benchmark (cortex.blender-bench/medians) "
+                      "or cortex.blender/load-blender-model is not there")}]
+      (let [quiet (java.util.logging.Logger/getLogger "com.jme3")
+            level (.getLevel quiet)
+            am (asset-manager)
+            theirs (jme3-blender-loader)]
+        (progress "blender load times")
+        (.setLevel quiet java.util.logging.Level/OFF)
+        (try
+          (vec (for [[name asset] (sort blender-creatures)
+                     :let [path (.getCanonicalPath (io/file "assets" asset))
+                           [ours jme] (medians runs (cond-> [#(load am path)]
+                                                      theirs (conj #(theirs path))))]]
+                 {:creature name :cortex-ms ours :jme3-blender-ms jme
+                  :speed-up (when (and ours jme) (/ jme ours))}))
+          (finally (.setLevel quiet level)))))))
 
 (def growth-tolerance
   "How far above n log n's own fitted exponent a measured exponent may
@@ -509,7 +538,8 @@
   [rows]
   (let [ks (distinct (mapcat keys (remove :skipped rows)))]
     (if (seq ks)
-      (for [k ks] [(name k) #(let [v (get % k)] (if (float? v) (fmt 2 v) (str v)))])
+      (for [k ks] [(name k) #(let [v (get % k)]
+                               (cond (float? v) (fmt 2 v) (nil? v) "-" :else (str v)))])
       [["benchmark" (constantly ".blend load")]])))
 
 (defn report
@@ -527,7 +557,7 @@
     (str "2. Simulation at 60 Hz fixed step: simulated seconds per wall second\n"
          (table sim-columns sim))
     (str "3. Heap\n" (table heap-columns heap))
-    (str ".blend load times (the reader's benchmark)\n"
+    (str ".blend load times, ms (medians by cortex.blender-bench's method)\n"
          (table (blender-load-columns blender-load) blender-load))
     (str "Targets\n" (table verdict-columns targets))]))
 
@@ -601,7 +631,7 @@
         build (run-build! (:build plan))
         sim (run-sim! (:sim plan))
         heap (run-heap! (:heap plan))
-        blender-load (run-blender-load!)
+        blender-load (run-blender-load! (:blender-load-runs plan))
         result {:plan plan :build build :exponents (exponents build)
                 :sim sim :heap heap :blender-load blender-load
                 :machine (assoc m :load-after (load-average))}]
