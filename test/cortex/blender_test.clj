@@ -306,6 +306,15 @@
               (doseq [[k v] (get t "properties")]
                 (is (same-property? (java->clj (blender/meta-data n k)) v) k)))))))))
 
+(deftest computed-worlds-match-stored
+  (doseq [^File f (concat (corpus-files)
+                          (filter #(.endsWith (.getName ^File %) ".blend")
+                                  (file-seq (io/file "test/fixtures"))))
+          :let [data (:scene-data (blender/read-blend (str f)))]
+          o (:objects data)
+          :when (and (:stored-world o) (not (#{5 6 7} (:partype o))))]
+    (is (close? (:stored-world o) (:world o) 1e-4) (str f " " (:name o)))))
+
 (deftest worm-meta-data
   (let [worm (blender/load-blender-model "Models/test-creature/worm.blend")
         seg (.getChild ^Node worm "worm-1")
