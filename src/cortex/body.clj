@@ -399,9 +399,10 @@
     {:type :hinge :limit [0 (/ Math/PI 2)] :axis (Vector3f. 0 1 0)}
     {:type :cone :limit-xz 0.5 :limit-xy 0.5 :twist 0.2}
   A hinge's :axis is in the joint empty's frame, in Blender's axes, and
-  is X unless given. Creating the joint attaches it to both bodies; the
-  world adds it to the physics space. Returns the joint. Errors name the
-  joint."
+  is X unless given. The two segments no longer collide with each
+  other: the joint and its limits keep them apart. Creating the joint
+  attaches it to both bodies; the world adds it to the physics space.
+  Returns the joint. Errors name the joint."
   [^Spatial obj-a ^Spatial obj-b ^Spatial joint]
   (let [label (str "joint " (pr-str (.getName joint)))]
     (try
@@ -412,9 +413,11 @@
             control-a (.getControl obj-a RigidBodyControl)
             control-b (.getControl obj-b RigidBodyControl)
             center (.getWorldTranslation joint)]
-        (joint-dispatch constraints control-a control-b
-                        (pivot control-a center) (pivot control-b center)
-                        (.toRotationMatrix (.getWorldRotation joint))))
+        (doto ^com.jme3.bullet.joints.PhysicsJoint
+            (joint-dispatch constraints control-a control-b
+                            (pivot control-a center) (pivot control-b center)
+                            (.toRotationMatrix (.getWorldRotation joint)))
+          (.setCollisionBetweenLinkedBodys false)))
       (catch clojure.lang.ExceptionInfo e
         (throw (ex-info (str label ": " (ex-message e))
                         (assoc (ex-data e) :joint (.getName joint)) e))))))
