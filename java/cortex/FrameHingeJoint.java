@@ -1,0 +1,73 @@
+package cortex;
+
+import com.bulletphysics.dynamics.constraintsolver.HingeConstraint;
+import com.bulletphysics.linearmath.Transform;
+import com.jme3.bullet.joints.PhysicsJoint;
+import com.jme3.bullet.objects.PhysicsRigidBody;
+import com.jme3.bullet.util.Converter;
+import com.jme3.math.Matrix3f;
+import com.jme3.math.Vector3f;
+
+/**
+ * A hinge whose frame in each body is given whole, as Bullet's
+ * btHingeConstraint(rbA, rbB, frameInA, frameInB) takes it and as
+ * Blender builds its hinges: the axis is the frame's Z, and the angle
+ * is zero where the two frames agree. jME's HingeJoint takes only an
+ * axis per body and guesses the rest of the frame, which moves the
+ * zero of the limits.
+ */
+public class FrameHingeJoint extends PhysicsJoint {
+    private final Matrix3f rotA;
+    private final Matrix3f rotB;
+
+    public FrameHingeJoint(PhysicsRigidBody nodeA, PhysicsRigidBody nodeB,
+                           Vector3f pivotA, Vector3f pivotB,
+                           Matrix3f rotA, Matrix3f rotB) {
+        super(nodeA, nodeB, pivotA, pivotB);
+        this.rotA = rotA.clone();
+        this.rotB = rotB.clone();
+        Transform frameA = new Transform(Converter.convert(rotA));
+        frameA.origin.set(Converter.convert(pivotA));
+        Transform frameB = new Transform(Converter.convert(rotB));
+        frameB.origin.set(Converter.convert(pivotB));
+        constraint = new HingeConstraint(nodeA.getObjectId(), nodeB.getObjectId(),
+                                         frameA, frameB);
+    }
+
+    private HingeConstraint hinge() {
+        return (HingeConstraint) constraint;
+    }
+
+    /** Limit the hinge angle to [low, high] radians; low > high frees it. */
+    public void setLimit(float low, float high) {
+        hinge().setLimit(low, high);
+    }
+
+    public float getLowerLimit() {
+        return hinge().getLowerLimit();
+    }
+
+    public float getUpperLimit() {
+        return hinge().getUpperLimit();
+    }
+
+    /** The angle between the two frames about the axis, in radians. */
+    public float getHingeAngle() {
+        return hinge().getHingeAngle();
+    }
+
+    /** Drive the hinge at targetVelocity (rad/s) with at most maxImpulse. */
+    public void enableMotor(boolean enable, float targetVelocity, float maxImpulse) {
+        hinge().enableAngularMotor(enable, targetVelocity, maxImpulse);
+    }
+
+    /** The hinge's frame in body A's frame. */
+    public Matrix3f getRotA() {
+        return rotA.clone();
+    }
+
+    /** The hinge's frame in body B's frame. */
+    public Matrix3f getRotB() {
+        return rotB.clone();
+    }
+}

@@ -1,0 +1,632 @@
+(ns cortex.blender-physics
+  "Build a creature from Blender's own rigid body physics: every object
+  with a Rigid Body (Physics tab) becomes a jBullet rigid body, every
+  Rigid Body Constraint a jBullet joint between the two objects it
+  names, placed and turned as the constraint object is. No custom
+  property is needed."
+  (:require [clojure.string :as str]
+            [cortex.blender :as blender]
+            [cortex.blender.file]
+            [cortex.blender.jme]
+            [cortex.blender.physics]
+            [cortex.blender.scene]
+            [cortex.body :as body]
+            [cortex.util :as util])
+  (:import (com.jme3.bullet.collision.shapes BoxCollisionShape CapsuleCollisionShape
+                                             CollisionShape ConeCollisionShape
+                                             CylinderCollisionShape GImpactCollisionShape
+                                             HullCollisionShape MeshCollisionShape
+                                             SphereCollisionShape)
+           (com.jme3.bullet.control RigidBodyControl)
+           (com.bulletphysics.linearmath ScalarUtil)
+           (com.jme3.bullet.joints PhysicsJoint SixDofJoint SliderJoint)
+           (com.jme3.math Matrix3f Vector3f)
+           (com.jme3.scene Geometry Mesh Node Spatial)
+           (cortex FrameHingeJoint)
+           (java.util List Map)
+           (java.util.logging Logger)
+           (jme3tools.optimize GeometryBatchFactory)))
+
+(defn- clojure-key
+  "A DNA field name as a keyword: \"lin_damping\" -> :lin-damping."
+  [k]
+  (keyword (str/replace (str k) "_" "-")))
+
+(defn- clojure-data
+  "User data (Java Maps and Lists) as Clojure data with keyword keys."
+  [v]
+  (cond (instance? Map v) (into {} (for [[k x] v] [(clojure-key k) (clojure-data x)]))
+        (instance? List v) (mapv clojure-data v)
+        :else v))
+
+(defn rigid-body
+  "The Blender rigid body settings of object `spatial` (its Node, or a
+  Geometry of it) as a map with keyword keys (:type \"ACTIVE\",
+  :shape \"BOX\", :mass, :friction, :lin-damping, :kinematic ...), or
+  nil when it has none."
+  [^Spatial spatial]
+  (some-> (blender/meta-data spatial "blender-rigid-body") clojure-data))
+
+(defn rigid-body-constraint
+  "The Blender rigid body constraint of object `spatial` as a map with
+  keyword keys (:type \"HINGE\", :ob1, :ob2, :use-limit-ang-z,
+  :limit-ang-z-lower ...), or nil when it has none."
+  [^Spatial spatial]
+  (some-> (blender/meta-data spatial "blender-rigid-body-constraint") clojure-data))
+
+(defn- objects-with
+  "The object Nodes of `creature` that carry user data `key`."
+  [^Node creature key]
+  (filter #(and (instance? Node %) (some? (.getUserData ^Spatial % key)))
+          (util/node-seq creature)))
+
+(defn rigid-body-objects
+  "The object Nodes of `creature` that have a Blender rigid body."
+  [creature]
+  (objects-with creature "blender-rigid-body"))
+
+(defn constraint-objects
+  "The object Nodes of `creature` that have a Blender rigid body
+  constraint, in name order."
+  [creature]
+  (sort-by #(.getName ^Spatial %) (objects-with creature "blender-rigid-body-constraint")))
+
+(defn- fail
+  "Throw an ex-info about object `name`."
+  [what name msg data]
+  (throw (ex-info (str what " " (pr-str name) ": " msg) (assoc data :object name))))
+
+(defn- finite
+  "The number under `k` in `settings` as a double; an error naming the
+  object when it is missing or not finite."
+  [what name settings k]
+  (let [v (get settings k)]
+    (if (and (number? v) (Double/isFinite (double v)))
+      (double v)
+      (fail what name (str (str/replace (clojure.core/name k) "-" "_") " must be a finite number, not "
+                           (pr-str v))
+            {:key k :value v}))))
+
+(defn- object-geometries
+  "The Geometries of object Node `node` (one per material)."
+  [^Node node]
+  (filter #(instance? Geometry %) (.getChildren node)))
+
+(defn body-spatial
+  "Where an object's rigid body goes: its Geometry when it has just one,
+  as cortex.body puts a segment's body there (so `cortex.body/body!`
+  finds it and leaves it alone); else the object Node itself."
+  ^Spatial [^Node node]
+  (let [gs (object-geometries node)]
+    (if (= 1 (count gs)) (first gs) node)))
+
+(defn- half-extents
+  "Half the size of the bounding box of `points` along jME's x, y, z."
+  [points]
+  (mapv (fn [axis]
+          (let [cs (map axis points)]
+            (/ (- (apply max cs) (apply min cs)) 2.0)))
+        [#(.x ^Vector3f %) #(.y ^Vector3f %) #(.z ^Vector3f %)]))
+
+(defn- merged-mesh
+  "One Mesh of all `geoms` (object-local, unscaled)."
+  ^Mesh [geoms]
+  (if (= 1 (count geoms))
+    (.getMesh ^Geometry (first geoms))
+    (let [m (Mesh.)]
+      (GeometryBatchFactory/mergeGeometries (java.util.ArrayList. ^java.util.Collection geoms) m)
+      m)))
+
+(def up-axis
+  "jME's Y: the axis Blender's upright shapes (capsule, cylinder, cone),
+  which stand on the object's local Z, stand on once in Y-up."
+  1)
+
+(defn shape-settings
+  "What Blender's rigidbody_validate_sim_shape makes of a shape, as
+  data: the shape's name and sizes, from `half` (the half extents of the
+  object's scaled bounding box, jME axes: Blender's x, z, y). Like
+  Blender, the shape is centred on the object's origin. Capsules,
+  cylinders and cones take the larger of Blender's x and y as radius and
+  Blender's z as half height; a sphere takes the largest half extent."
+  [shape [hx hy hz]]
+  (let [radius (max hx hz)]
+    (case shape
+      "BOX" {:shape "BOX" :half-extents [hx hy hz]}
+      "SPHERE" {:shape "SPHERE" :radius (max hx hy hz)}
+      "CAPSULE" {:shape "CAPSULE" :radius radius :height (max 0.0 (* 2 (- hy radius)))}
+      "CYLINDER" {:shape "CYLINDER" :half-extents [radius hy radius]}
+      "CONE" {:shape "CONE" :radius radius :height (* 2 hy)}
+      {:shape shape})))
+
+(defn- vec3 ^Vector3f [[x y z]] (Vector3f. (float x) (float y) (float z)))
+
+(defn- tiny
+  "Bullet refuses shapes of zero size; keep every size above a hair."
+  [x]
+  (max 1e-4 (double x)))
+
+(defn collision-shape
+  "The jBullet collision shape for object Node `node` whose rigid body is
+  `rb`: its shape type sized from the meshes of its Geometries at their
+  world scale. CONVEX_HULL is cortex's simplified hull; MESH is a
+  GImpact triangle mesh for a moving body and a static triangle mesh
+  (BVH) for a body that never moves; COMPOUND (Blender 2.9+) is not
+  something jBullet can build from one object, so it becomes a hull
+  too. Returns [shape warnings]."
+  [^Node node rb static?]
+  (let [geoms (object-geometries node)
+        name (.getName node)
+        _ (when (empty? geoms)
+            (fail "rigid body" name "has no mesh to give it a shape" {}))
+        scale (.getWorldScale ^Geometry (first geoms))
+        points (mapcat #(body/mesh-points (.getMesh ^Geometry %) (.getWorldScale ^Geometry %)) geoms)
+        _ (when (empty? points)
+            (fail "rigid body" name "its mesh has no vertices" {}))
+        half (mapv tiny (half-extents points))
+        settings (shape-settings (:shape rb) half)
+        hull #(HullCollisionShape. (float-array (mapcat (fn [^Vector3f p] [(.x p) (.y p) (.z p)])
+                                                        (body/simplify-hull points body/max-hull-points))))
+        margin (:margin rb)
+        use-margin? (or (:use-margin rb) (#{"CONVEX_HULL" "MESH" "CONE"} (:shape rb)))
+        [shape warnings]
+        (case (:shape settings)
+          "BOX" [(BoxCollisionShape. (vec3 (:half-extents settings)))]
+          "SPHERE" [(SphereCollisionShape. (float (:radius settings)))]
+          "CAPSULE" [(CapsuleCollisionShape. (float (tiny (:radius settings)))
+                                             (float (:height settings)) (int up-axis))]
+          "CYLINDER" [(CylinderCollisionShape. (vec3 (:half-extents settings)) (int up-axis))]
+          "CONE" [(ConeCollisionShape. (float (tiny (:radius settings)))
+                                       (float (tiny (:height settings))) (int up-axis))]
+          "CONVEX_HULL" [(hull)]
+          "MESH" [(doto (if static?
+                          (MeshCollisionShape. (merged-mesh geoms))
+                          (GImpactCollisionShape. (merged-mesh geoms)))
+                    (.setScale scale))]
+          "COMPOUND" [(hull) [(str "rigid body " (pr-str name)
+                                   ": COMPOUND shapes are built as a convex hull")]]
+          (fail "rigid body" name (str "unknown collision shape " (pr-str (:shape rb))
+                                       " (code " (:shape-code rb) ")")
+                {:shape (:shape rb)}))]
+    (when (and use-margin? (number? margin) (Double/isFinite (double margin)) (>= margin 0))
+      (.setMargin ^CollisionShape shape (float margin)))
+    [shape (vec warnings)]))
+
+(defn body-mass
+  "The mass Blender simulates a rigid body with: its mass when it is
+  ACTIVE and dynamic, 0 (it never moves by itself) when it is PASSIVE,
+  animated (kinematic) or not dynamic, as Blender's RBO_GET_MASS."
+  [name rb]
+  (let [m (finite "rigid body" name rb :mass)]
+    (when (neg? m)
+      (fail "rigid body" name (str "mass must not be negative, not " m) {:mass m}))
+    (if (or (not= "ACTIVE" (:type rb)) (:kinematic rb) (:disabled rb))
+      0.0
+      m)))
+
+(defn rigid-body!
+  "Give object Node `node` the jBullet rigid body its Blender rigid body
+  describes: shape, mass, friction, restitution and damping; an
+  animated (kinematic) body follows its spatial. The body goes on
+  `body-spatial`. An object that already has a body keeps it. Returns
+  {:object name :control c :spatial s :shape :mass :warnings}."
+  [^Node node]
+  (let [name (.getName node)
+        rb (rigid-body node)
+        spatial (body-spatial node)]
+    (when-not (#{"ACTIVE" "PASSIVE"} (:type rb))
+      (fail "rigid body" name (str "unknown type " (pr-str (:type rb))
+                                   " (code " (:type-code rb) ")")
+            {:type (:type rb)}))
+    (if-let [c (.getControl spatial RigidBodyControl)]
+      {:object name :control c :spatial spatial :shape (:shape rb) :mass (.getMass c) :warnings []}
+      (let [mass (body-mass name rb)
+            [shape warnings] (collision-shape node rb (zero? mass))
+            c (RigidBodyControl. ^CollisionShape shape (float mass))]
+        (.setFriction c (float (finite "rigid body" name rb :friction)))
+        (.setRestitution c (float (finite "rigid body" name rb :restitution)))
+        (.setDamping c (float (finite "rigid body" name rb :lin-damping))
+                     (float (finite "rigid body" name rb :ang-damping)))
+        (when (:kinematic rb) (.setKinematic c true))
+        (.addControl spatial c)
+        {:object name :control c :spatial spatial :shape (:shape rb) :mass mass
+         :warnings warnings}))))
+
+(defn rigid-bodies!
+  "Make every object of `creature` that has a Blender rigid body solid
+  (see `rigid-body!`). Returns the reports, in scene order."
+  [^Node creature]
+  (.updateGeometricState creature)
+  (mapv rigid-body! (rigid-body-objects creature)))
+
+(def ^Matrix3f blender-axes
+  "Blender's local X, Y and Z seen in jME's Y-up axes, as the columns of
+  a rotation: (x, y, z) -> (x, z, -y)."
+  (Matrix3f. 1 0 0
+             0 0 1
+             0 -1 0))
+
+(defn constraint-frame
+  "The frame of constraint object `node` in the world, as Blender uses
+  it: its world rotation (scale left out), whose columns are the
+  object's own X, Y and Z axes in jME's world coordinates."
+  ^Matrix3f [^Spatial node]
+  (.mult (.toRotationMatrix (.getWorldRotation node)) blender-axes))
+
+(defn- in-body
+  "World rotation `frame` seen from inside `control`'s body."
+  ^Matrix3f [^RigidBodyControl control ^Matrix3f frame]
+  (.mult (.invert (.getPhysicsRotationMatrix control)) frame))
+
+(def locked-angle
+  "jBullet frees a 6-DOF angle whose lower limit equals its upper one
+  (its RotationalLimitMotor tests lo >= hi); a limit that Blender gives
+  as one value is widened by this much (radians) on each side, so it
+  locks."
+  1e-4)
+
+(def ^:private axes ["x" "y" "z"])
+
+(defn limits
+  "The [lower upper] limits of constraint `rbc` for `kind` (\"lin\" or
+  \"ang\") on each axis, nil for an axis Blender leaves free."
+  [name rbc kind]
+  (mapv (fn [a]
+          (when (get rbc (keyword (str "use-limit-" kind "-" a)))
+            [(finite "rigid body constraint" name rbc (keyword (str "limit-" kind "-" a "-lower")))
+             (finite "rigid body constraint" name rbc (keyword (str "limit-" kind "-" a "-upper")))]))
+        axes))
+
+(defn- six-dof-limits
+  "Lower and upper limit vectors for a 6-DOF joint: a free axis gets
+  lower > upper, which Bullet reads as free; an angle locked at one
+  value is widened by `locked-angle`."
+  [ls angular?]
+  (let [ls (map (fn [l]
+                  (cond (nil? l) [0.0 -1.0]
+                        (and angular? (= (first l) (second l)))
+                        [(- (first l) locked-angle) (+ (second l) locked-angle)]
+                        :else l))
+                ls)]
+    [(vec3 (map first ls)) (vec3 (map second ls))]))
+
+(defn- six-dof
+  "A jME SixDofJoint in the frames of `ctx`, linear limits `lin` and
+  angular limits `ang` (per axis [lower upper], nil for free), measured
+  in body A's frame as Blender's constraints are."
+  ^SixDofJoint [{:keys [a b pivot-a pivot-b rot-a rot-b]} lin ang]
+  (let [[llo lhi] (six-dof-limits lin false)
+        [alo ahi] (six-dof-limits ang true)]
+    (doto (SixDofJoint. a b pivot-a pivot-b rot-a rot-b true)
+      (.setLinearLowerLimit llo)
+      (.setLinearUpperLimit lhi)
+      (.setAngularLowerLimit alo)
+      (.setAngularUpperLimit ahi))))
+
+(defn- slider
+  "A jME SliderJoint along the frame's X: linear limits `lin` and
+  angular limits `ang` about X, each [lower upper] or nil (free)."
+  ^SliderJoint [{:keys [a b pivot-a pivot-b rot-a rot-b]} lin ang]
+  (let [[llo lhi] (or lin [1.0 -1.0])
+        [alo ahi] (or ang [1.0 -1.0])]
+    (doto (SliderJoint. a b pivot-a pivot-b rot-a rot-b true)
+      (.setLowerLinLimit (float llo))
+      (.setUpperLinLimit (float lhi))
+      (.setLowerAngLimit (float alo))
+      (.setUpperAngLimit (float ahi)))))
+
+(def locked
+  "Limits that hold an axis still."
+  [0.0 0.0])
+
+(defmulti constraint-joint
+  "Make the jBullet joint for Blender constraint type `type` (a name:
+  \"HINGE\"...). `ctx` holds :name (the constraint object's), :rbc (its
+  settings), the bodies :a and :b, and the constraint's frame in each
+  body: :pivot-a, :pivot-b, :rot-a, :rot-b. Returns {:joint j
+  :warnings [...]}."
+  (fn [type _ctx] type))
+
+(defmethod constraint-joint :default
+  [type {:keys [name rbc]}]
+  (fail "rigid body constraint" name
+        (str "jBullet cannot build constraint type " (pr-str type)
+             " (code " (:type-code rbc) ")")
+        {:type type}))
+
+(defmethod constraint-joint "FIXED" [_ ctx]
+  {:joint (six-dof ctx [locked locked locked] [locked locked locked])})
+
+(defmethod constraint-joint "POINT" [_ ctx]
+  {:joint (six-dof ctx [locked locked locked] [nil nil nil])})
+
+(defn hinge-limit
+  "The limit to give a jBullet hinge so that it stops at `angle`
+  (radians). jBullet, like the Bullet 2.7 it ports, measures a hinge's
+  angle with ScalarUtil/atan2Fast, an approximation off by up to a few
+  hundredths of a radian; a limit is compared with that measure, so
+  the limit is passed through the same approximation."
+  [angle]
+  (ScalarUtil/atan2Fast (float (Math/sin angle)) (float (Math/cos angle))))
+
+(defmethod constraint-joint "HINGE" [_ {:keys [name rbc a b pivot-a pivot-b rot-a rot-b]}]
+  (let [j (FrameHingeJoint. a b pivot-a pivot-b rot-a rot-b)]
+    (when-let [[lo hi] (nth (limits name rbc "ang") 2)]
+      (.setLimit j (float (hinge-limit lo)) (float (hinge-limit hi))))
+    {:joint j}))
+
+(defmethod constraint-joint "SLIDER" [_ {:keys [name rbc] :as ctx}]
+  {:joint (slider ctx (first (limits name rbc "lin")) locked)})
+
+(defmethod constraint-joint "PISTON" [_ {:keys [name rbc] :as ctx}]
+  {:joint (slider ctx (first (limits name rbc "lin")) (first (limits name rbc "ang")))})
+
+(defmethod constraint-joint "GENERIC" [_ {:keys [name rbc] :as ctx}]
+  {:joint (six-dof ctx (limits name rbc "lin") (limits name rbc "ang"))})
+
+(defmethod constraint-joint "MOTOR" [_ {:keys [name rbc] :as ctx}]
+  (let [j (six-dof ctx [nil nil nil] [nil nil nil])
+        motor (.getRotationalLimitMotor j 0)]
+    (when (:use-motor-ang rbc)
+      (doto motor
+        (.setEnableMotor true)
+        (.setTargetVelocity (float (finite "rigid body constraint" name rbc :motor-ang-target-velocity)))
+        (.setMaxMotorForce (float (finite "rigid body constraint" name rbc :motor-ang-max-impulse)))))
+    {:joint j
+     :warnings (when (:use-motor-lin rbc)
+                 [(str "rigid body constraint " (pr-str name)
+                       ": jBullet's 6-DOF joint has no linear motor; the linear motor is left off")])}))
+
+(defn springs
+  "The springs of constraint `rbc`: for each axis whose spring is on,
+  {:angular? :axis (0 1 2) :stiffness :damping}."
+  [name rbc]
+  (vec (for [[angular? prefix] [[false ""] [true "ang_"]]
+             [i a] (map-indexed vector axes)
+             :let [suffix (str (str/replace prefix "_" "-") a)]
+             :when (get rbc (keyword (str "use-spring-" suffix)))]
+         {:angular? angular? :axis i
+          :stiffness (finite "rigid body constraint" name rbc (keyword (str "spring-stiffness-" suffix)))
+          :damping (finite "rigid body constraint" name rbc (keyword (str "spring-damping-" suffix)))})))
+
+(defn- frame-now
+  "Where the frame (`pivot`, `rot`, in `c`'s body) is in the world now:
+  [origin rotation]."
+  [^RigidBodyControl c ^Vector3f pivot ^Matrix3f rot]
+  (let [r (.getPhysicsRotationMatrix c)]
+    [(.add (.getPhysicsLocation c) (.mult r pivot)) (.mult r rot)]))
+
+(defn- point-velocity
+  "The world velocity of the body point at world position `p`."
+  ^Vector3f [^RigidBodyControl c ^Vector3f p]
+  (.add (.getLinearVelocity c)
+        (.cross (.getAngularVelocity c) (.subtract p (.getPhysicsLocation c)))))
+
+(defn- rotation-vector
+  "The rotation `m` as a rotation vector (axis times angle, radians)."
+  ^Vector3f [^Matrix3f m]
+  (let [q (.fromRotationMatrix (com.jme3.math.Quaternion.) m)
+        q (if (neg? (.getW q)) (.negate q) q)
+        axis (Vector3f.)
+        angle (.toAngleAxis q axis)]
+    (if (< (.length axis) 1e-9) (Vector3f.) (.mult (.normalize axis) angle))))
+
+(defn spring-forces!
+  "Push the bodies `a` and `b` of a spring constraint back towards the
+  rest pose its frames had when it was made (both frames at one place,
+  turned alike), as Bullet's 6-DOF spring does: along (and about) each
+  sprung axis of frame A, a force -k x - c v, x the offset and v its
+  rate of change, on B and its opposite on A, for a step of `dt`
+  seconds. The force is given as the impulse it imparts over the step:
+  jBullet calls tick listeners after it has already added up the step's
+  forces."
+  [{:keys [^RigidBodyControl a ^RigidBodyControl b pivot-a pivot-b rot-a rot-b]} springs dt]
+  (let [[^Vector3f pa ^Matrix3f ra] (frame-now a pivot-a rot-a)
+        [^Vector3f pb ^Matrix3f rb] (frame-now b pivot-b rot-b)
+        rat (.transposeNew ra)
+        offset (.mult rat (.subtract pb pa))
+        rate (.mult rat (.subtract (point-velocity b pb) (point-velocity a pa)))
+        turn (rotation-vector (.mult rat rb))
+        spin (.mult rat (.subtract (.getAngularVelocity b) (.getAngularVelocity a)))]
+    (doseq [{:keys [angular? axis stiffness damping]} springs
+            :let [x (.get (if angular? turn offset) (int axis))
+                  v (.get (if angular? spin rate) (int axis))
+                  dir (.getColumn ra (int axis))
+                  push (.mult dir (float (* (double dt) (- (+ (* stiffness x) (* damping v))))))]]
+      (if angular?
+        (do (.applyTorqueImpulse b push)
+            (.applyTorqueImpulse a (.negate push)))
+        (do (.applyImpulse b push (.subtract pb (.getPhysicsLocation b)))
+            (.applyImpulse a (.negate push) (.subtract pa (.getPhysicsLocation a))))))))
+
+(defn spring-control
+  "A jME physics control that runs `spring-forces!` before every physics
+  step of the space it joins: jBullet has no spring constraint, so the
+  springs of a GENERIC_SPRING constraint are forces cortex applies."
+  [ctx springs]
+  (let [space (atom nil)
+        enabled (atom true)]
+    (reify
+      com.jme3.bullet.control.PhysicsControl
+      (setPhysicsSpace [this s]
+        (when-let [^com.jme3.bullet.PhysicsSpace old @space] (.removeTickListener old this))
+        (reset! space s)
+        (when s (.addTickListener ^com.jme3.bullet.PhysicsSpace s this)))
+      (getPhysicsSpace [_] @space)
+      (setEnabled [_ on] (reset! enabled (boolean on)))
+      (isEnabled [_] @enabled)
+      (cloneForSpatial [_ _] (spring-control ctx springs))
+      (setSpatial [_ _])
+      (update [_ _])
+      (render [_ _ _])
+      (write [_ _])
+      (read [_ _])
+      com.jme3.bullet.PhysicsTickListener
+      (prePhysicsTick [_ _ dt]
+        (when @enabled (spring-forces! ctx springs dt)))
+      (physicsTick [_ _ _]))))
+
+(defmethod constraint-joint "GENERIC_SPRING" [_ {:keys [name rbc b] :as ctx}]
+  (let [j (six-dof ctx (limits name rbc "lin") (limits name rbc "ang"))
+        ss (springs name rbc)]
+    {:joint j
+     :springs ss
+     :spring-control (when (seq ss) (spring-control ctx ss))
+     :warnings (when (and (seq ss) (= "SPRING1" (:spring-type rbc)))
+                 [(str "rigid body constraint " (pr-str name)
+                       ": SPRING1 damping is Bullet's velocity factor; cortex's springs"
+                       " damp as SPRING2 does")])}))
+
+(defn- body-of
+  "The body report (see `rigid-body!`) of the object named by `k` (:ob1
+  or :ob2) of constraint `rbc`, from `bodies` (object name -> report); an error
+  naming the constraint when the name is missing or names no rigid body."
+  [name rbc bodies k]
+  (let [which (if (= k :ob1) "first object (ob1)" "second object (ob2)")
+        target (get rbc k)]
+    (cond
+      (nil? target)
+      (fail "rigid body constraint" name (str "its " which " is not set") {:missing k})
+      (nil? (get bodies target))
+      (fail "rigid body constraint" name
+            (str "its " which " " (pr-str target) " is not a rigid body of this creature")
+            {:missing k :target target})
+      :else (get bodies target))))
+
+(defn- caveats
+  "What jBullet cannot do of constraint `rbc`, as warnings."
+  [name rbc]
+  (let [label (str "rigid body constraint " (pr-str name) ": ")]
+    (cond-> []
+      (:use-breaking rbc)
+      (conj (str label "jBullet cannot break joints; breaking threshold "
+                 (:breaking-threshold rbc) " is ignored"))
+      (:use-override-solver-iterations rbc)
+      (conj (str label "jBullet has no per-joint solver iterations; "
+                 (:num-solver-iterations rbc) " iterations are ignored")))))
+
+(defn constraint!
+  "Make the jBullet joint that constraint object `node` describes,
+  between the bodies of the objects it names (`bodies`: object name ->
+  the report of `rigid-body!`). The joint's frame is the constraint object's world
+  transform, as in Blender. Its bodies collide with each other unless
+  Blender's Disable Collisions is on. A disabled constraint makes no
+  joint. Returns {:object :type :joint :bodies [ob1 ob2] :warnings}, plus
+  :springs for GENERIC_SPRING. Errors name the constraint object."
+  [^Spatial node bodies]
+  (let [name (.getName node)
+        rbc (rigid-body-constraint node)
+        type (:type rbc)]
+    (if-not (:enabled rbc)
+      {:object name :type type :joint nil :bodies [(:ob1 rbc) (:ob2 rbc)]
+       :warnings [(str "rigid body constraint " (pr-str name) " is disabled in Blender: no joint")]}
+      (let [^RigidBodyControl a (:control (body-of name rbc bodies :ob1))
+            ^RigidBodyControl b (:control (body-of name rbc bodies :ob2))
+            _ (when (identical? a b)
+                (fail "rigid body constraint" name
+                      (str "joins " (pr-str (:ob1 rbc)) " to itself") {}))
+            _ (when-not (contains? (methods constraint-joint) type)
+                (constraint-joint type {:name name :rbc rbc}))
+            center (.getWorldTranslation node)
+            frame (constraint-frame node)
+            ctx {:name name :rbc rbc :a a :b b
+                 :pivot-a (body/pivot a center) :pivot-b (body/pivot b center)
+                 :rot-a (in-body a frame) :rot-b (in-body b frame)}
+            {:keys [^PhysicsJoint joint warnings] :as made} (constraint-joint type ctx)]
+        (.setCollisionBetweenLinkedBodys joint (not (:disable-collisions rbc)))
+        (when-let [sc (:spring-control made)]
+          (.addControl ^Spatial (:spatial (body-of name rbc bodies :ob2))
+                       ^com.jme3.scene.control.Control sc))
+        (merge (dissoc made :spring-control)
+               {:object name :type type :joint joint :bodies [(:ob1 rbc) (:ob2 rbc)]
+                :warnings (into (vec warnings) (caveats name rbc))})))))
+
+(defn constraints!
+  "Make the joint of every rigid body constraint of `creature` (see
+  `constraint!`), in the constraint objects' name order. `bodies` maps
+  object names to the reports of `rigid-body!`; without it, the bodies
+  the creature's rigid body objects already have are used. Returns the
+  reports."
+  ([^Node creature]
+   (constraints! creature
+                 (into {} (for [^Node n (rigid-body-objects creature)
+                                :let [s (body-spatial n)
+                                      c (.getControl s RigidBodyControl)]
+                                :when c]
+                            [(.getName n) {:control c :spatial s}]))))
+  ([^Node creature bodies]
+   (.updateGeometricState creature)
+   (mapv #(constraint! % bodies) (constraint-objects creature))))
+
+(def ^:private ^Logger logger (Logger/getLogger "cortex.blender-physics"))
+
+(defn build!
+  "Give `creature` (a Node loaded from Blender) the body Blender's Physics
+  tab describes: rigid bodies, then joints for its rigid body
+  constraints. A creature that also has custom-property joints (a
+  \"joints\" empty, see cortex.body) gets those too, by
+  `cortex.body/body!`, between the two. Returns {:creature :bodies
+  :joints :warnings}: the reports of `rigid-body!` and `constraint!`
+  and every warning about what jBullet cannot do."
+  [^Node creature]
+  (let [bodies (rigid-bodies! creature)
+        _ (when (seq (body/joints creature))
+            (body/body! creature))
+        joints (constraints! creature (into {} (map (juxt :object identity)) bodies))
+        warnings (vec (concat (mapcat :warnings bodies) (mapcat :warnings joints)))]
+    {:creature creature :bodies bodies :joints joints :warnings warnings}))
+
+(defn physics-body!
+  "Like `cortex.body/body!`, for a creature made in Blender's Physics
+  tab: build it (see `build!`), log the warnings, keep them as the
+  creature's user data \"blender-physics-warnings\" (a list of strings),
+  and return the creature."
+  [^Node creature]
+  (let [{:keys [warnings]} (build! creature)]
+    (doseq [w warnings] (.warning logger ^String w))
+    (.setUserData creature "blender-physics-warnings" (java.util.ArrayList. ^java.util.Collection warnings))
+    creature))
+
+(defn warnings
+  "The warnings `physics-body!` left on `creature`."
+  [^Node creature]
+  (vec (.getUserData creature "blender-physics-warnings")))
+
+(defn gravity
+  "Blender's gravity for rigid body world settings `world` (see
+  cortex.blender.physics/rigid-body-world): the scene's gravity times
+  the world's effector weight, in jME's axes; zero when the scene's
+  gravity is off."
+  ^Vector3f [world]
+  (let [g (get world "gravity" [0.0 0.0 -9.81])
+        w (double (get world "effector_gravity" 1.0))]
+    (if (get world "use_gravity" true)
+      (.mult (util/blender-to-jme (vec3 g)) (float w))
+      (Vector3f.))))
+
+(defn with-physics-data!
+  "Make sure the object Nodes of `root`, loaded from the .blend file
+  `source` (a path, File or bytes), carry their Blender physics as user
+  data (see cortex.blender.physics/user-data), reading the file again
+  for the objects whose Node lacks it: for scene graphs made by a loader
+  that does not attach it. Objects are matched by name. Returns root."
+  [^Node root source]
+  (let [{:keys [file]} (blender/read-blend source)
+        sc (cortex.blender.scene/current-scene file)
+        obs (if sc (cortex.blender.scene/scene-objects file sc) [])
+        data (into {} (for [ob obs
+                            :let [d (cortex.blender.physics/user-data file ob)]
+                            :when (seq d)]
+                        [(cortex.blender.file/id-name ob) d]))]
+    (doseq [^Spatial n (util/node-seq root)
+            :when (and (instance? Node n) (contains? data (.getName n))
+                       (nil? (.getUserData n "blender-rigid-body"))
+                       (nil? (.getUserData n "blender-rigid-body-constraint")))]
+      (cortex.blender.jme/set-user-data! n (data (.getName n))))
+    root))
+
+(defn load-creature
+  "Load the .blend file at `path` as a creature with its Blender physics
+  data attached (see `with-physics-data!`); not yet physical."
+  ^Node [path]
+  (with-physics-data! (blender/load-blender-model path) path))

@@ -1,0 +1,387 @@
+(ns cortex.blender-physics-test
+  (:require [clojure.test :refer [deftest is testing]]
+            [cortex.blender :as blender]
+            [cortex.blender-physics :as bp]
+            [cortex.blender.physics :as physics]
+            [cortex.blender.scene :as scene]
+            [cortex.blender.file :as file]
+            [cortex.body :as body]
+            [cortex.util :as util]
+            [cortex.world :as world])
+  (:import (com.jme3.app.state AbstractAppState)
+           (com.jme3.bullet.control RigidBodyControl)
+           (com.jme3.bullet.joints SixDofJoint SliderJoint)
+           (com.jme3.math Quaternion Vector3f)
+           (com.jme3.scene Node Spatial)
+           (cortex FrameHingeJoint)))
+
+(def versions ["b34" "b45" "b50"])
+
+(defn fixture [v] (str "test/fixtures/blend/" v "/physics.blend"))
+
+(defn read-json
+  "A small JSON reader: objects as maps with string keys, arrays as
+  vectors, numbers as doubles or longs."
+  [^String s]
+  (let [pos (atom 0)
+        peek-char #(when (< @pos (count s)) (.charAt s @pos))
+        skip-ws #(while (and (peek-char) (Character/isWhitespace (char (peek-char)))) (swap! pos inc))
+        expect (fn [^String word v] (swap! pos + (count word)) v)]
+    (letfn [(value []
+              (skip-ws)
+              (let [c (peek-char)]
+                (cond
+                  (= c \{) (do (swap! pos inc)
+                               (loop [m {}]
+                                 (skip-ws)
+                                 (if (= (peek-char) \}) (do (swap! pos inc) m)
+                                     (let [k (value) _ (skip-ws) _ (swap! pos inc) v (value)]
+                                       (skip-ws)
+                                       (when (= (peek-char) \,) (swap! pos inc))
+                                       (recur (assoc m k v))))))
+                  (= c \[) (do (swap! pos inc)
+                               (loop [xs []]
+                                 (skip-ws)
+                                 (if (= (peek-char) \]) (do (swap! pos inc) xs)
+                                     (let [v (value)]
+                                       (skip-ws)
+                                       (when (= (peek-char) \,) (swap! pos inc))
+                                       (recur (conj xs v))))))
+                  (= c \") (let [sb (StringBuilder.)]
+                             (swap! pos inc)
+                             (loop []
+                               (let [ch (peek-char)]
+                                 (swap! pos inc)
+                                 (cond (= ch \") (str sb)
+                                       (= ch \\) (let [e (peek-char)]
+                                                   (swap! pos inc)
+                                                   (if (= e \u)
+                                                     (do (.append sb (char (Integer/parseInt (subs s @pos (+ @pos 4)) 16)))
+                                                         (swap! pos + 4))
+                                                     (.append sb (get {\n \newline \t \tab} e e)))
+                                                   (recur))
+                                       :else (do (.append sb ch) (recur))))))
+                  (= c \t) (expect "true" true)
+                  (= c \f) (expect "false" false)
+                  (= c \n) (expect "null" nil)
+                  :else (let [start @pos]
+                          (while (and (peek-char) (re-find #"[-+.eE0-9]" (str (peek-char))))
+                            (swap! pos inc))
+                          (let [t (subs s start @pos)]
+                            (if (re-find #"[.eE]" t) (Double/parseDouble t) (Long/parseLong t)))))))]
+      (value))))
+
+(defn oracle [v]
+  (read-json (slurp (str "test/fixtures/blend/" v "/physics.json"))))
+
+(defn same? [a b]
+  (if (and (number? a) (number? b))
+    (< (Math/abs (- (double a) (double b))) 1e-5)
+    (= a b)))
+
+(def body-names
+  "Blender's Python names of rigid body settings -> the DNA names the
+  reader keeps."
+  {"type" "type" "kinematic" "kinematic" "mass" "mass" "collision_shape" "shape"
+   "friction" "friction" "restitution" "restitution" "use_margin" "use_margin"
+   "collision_margin" "margin" "linear_damping" "lin_damping"
+   "angular_damping" "ang_damping" "use_deactivation" "use_deactivation"
+   "use_start_deactivated" "use_start_deactivated"
+   "deactivate_linear_velocity" "lin_sleep_thresh"
+   "deactivate_angular_velocity" "ang_sleep_thresh"})
+
+(def constraint-renames
+  {"object1" "ob1" "object2" "ob2" "solver_iterations" "num_solver_iterations"})
+
+(deftest reads-what-blender-says
+  (doseq [v versions]
+    (testing v
+      (let [o (oracle v)
+            bf (:file (blender/read-blend (fixture v)))
+            sc (scene/current-scene bf)
+            obs (into {} (map (juxt file/id-name identity)) (scene/scene-objects bf sc))]
+        (doseq [t (get o "objects")
+                :let [name (get t "name") ob (obs name)
+                      rb (physics/rigid-body bf ob)
+                      rbc (physics/rigid-body-constraint bf ob)]]
+          (testing name
+            (is (= (some? (get t "rigid_body")) (some? rb)))
+            (is (= (some? (get t "rigid_body_constraint")) (some? rbc)))
+            (when-let [trb (get t "rigid_body")]
+              (is (= (get trb "enabled") (not (get rb "disabled"))))
+              (doseq [[k dna] body-names]
+                (is (same? (get trb k) (get rb dna)) k)))
+            (when-let [trbc (get t "rigid_body_constraint")]
+              (doseq [[k x] trbc]
+                (is (same? x (get rbc (get constraint-renames k k))) k)))))
+        (let [w (physics/rigid-body-world bf sc)
+              tw (get o "rigid_body_world")]
+          (is (same? (get tw "time_scale") (get w "time_scale")))
+          (is (same? (get tw "solver_iterations") (get w "num_solver_iterations")))
+          (is (same? (get tw "substeps_per_frame") (get w "steps_per_second")))
+          (is (same? (get tw "effector_gravity") (get w "effector_gravity")))
+          (is (every? true? (map same? (get o "gravity") (get w "gravity"))))
+          (is (= (get o "use_gravity") (get w "use_gravity")))
+          (is (every? true? (map same? [0 -9.81 0] (let [g (bp/gravity w)] [(.x g) (.y g) (.z g)])))))))))
+
+(defn by-name [^Node root name]
+  (first (filter #(and (instance? Node %) (= name (.getName ^Spatial %))) (util/node-seq root))))
+
+(defn control ^RigidBodyControl [root name]
+  (.getControl (bp/body-spatial (by-name root name)) RigidBodyControl))
+
+(def joint-classes
+  {"FIXED" SixDofJoint "POINT" SixDofJoint "GENERIC" SixDofJoint "GENERIC_SPRING" SixDofJoint
+   "MOTOR" SixDofJoint "HINGE" FrameHingeJoint "SLIDER" SliderJoint "PISTON" SliderJoint})
+
+(def shape-classes
+  {"BOX" "BoxCollisionShape" "SPHERE" "SphereCollisionShape" "CAPSULE" "CapsuleCollisionShape"
+   "CYLINDER" "CylinderCollisionShape" "CONE" "ConeCollisionShape"
+   "CONVEX_HULL" "HullCollisionShape" "MESH" #{"GImpactCollisionShape" "MeshCollisionShape"}})
+
+(deftest builds-what-blender-says
+  (doseq [v versions]
+    (testing v
+      (let [o (oracle v)
+            {:keys [creature bodies joints warnings]} (bp/build! (bp/load-creature (fixture v)))
+            joints (into {} (map (juxt :object identity)) joints)
+            theirs (into {} (map (juxt #(get % "name") identity)) (get o "objects"))]
+        (testing "every constraint type is there"
+          (is (= #{"FIXED" "POINT" "HINGE" "SLIDER" "PISTON" "GENERIC" "GENERIC_SPRING" "MOTOR"}
+                 (set (map :type (vals joints))))))
+        (doseq [[name t] theirs
+                :let [rb (get t "rigid_body")
+                      rbc (get t "rigid_body_constraint")]]
+          (testing name
+            (when rb
+              (let [c (control creature name)
+                    shape (.getSimpleName (class (.getCollisionShape c)))
+                    want (shape-classes (get rb "collision_shape"))]
+                (is (if (set? want) (contains? want shape) (= want shape)))
+                (is (same? (if (= "ACTIVE" (get rb "type")) (get rb "mass") 0.0) (.getMass c)))
+                (is (same? (get rb "friction") (.getFriction c)))
+                (is (same? (get rb "restitution") (.getRestitution c)))
+                (is (= (boolean (get rb "kinematic")) (.isKinematic c)))))
+            (when rbc
+              (let [{:keys [joint type] [a b] :bodies} (joints name)]
+                (is (= (get rbc "type") type))
+                (is (instance? (joint-classes type) joint))
+                (is (= [(get rbc "object1") (get rbc "object2")] [a b]))
+                (is (identical? (.getBodyA joint) (control creature a)))
+                (is (identical? (.getBodyB joint) (control creature b)))
+                (is (= (not (get rbc "disable_collisions")) (.isCollisionBetweenLinkedBodys joint)))
+                (when (and (= "HINGE" type) (get rbc "use_limit_ang_z"))
+                  (is (same? (bp/hinge-limit (get rbc "limit_ang_z_lower"))
+                             (.getLowerLimit ^FrameHingeJoint joint)))
+                  (is (same? (bp/hinge-limit (get rbc "limit_ang_z_upper"))
+                             (.getUpperLimit ^FrameHingeJoint joint))))
+                (when (#{"SLIDER" "PISTON"} type)
+                  (is (same? (get rbc "limit_lin_x_lower") (.getLowerLinLimit ^SliderJoint joint)))
+                  (is (same? (get rbc "limit_lin_x_upper") (.getUpperLinLimit ^SliderJoint joint))))
+                (when (= "MOTOR" type)
+                  (let [m (.getRotationalLimitMotor ^SixDofJoint joint 0)]
+                    (is (= (get rbc "use_motor_ang") (.isEnableMotor m)))
+                    (is (same? (get rbc "motor_ang_target_velocity") (.getTargetVelocity m)))
+                    (is (same? (get rbc "motor_ang_max_impulse") (.getMaxMotorForce m)))))
+                (when (= "GENERIC_SPRING" type)
+                  (is (= [{:angular? false :axis 2 :stiffness 50.0 :damping 2.0}
+                          {:angular? true :axis 0 :stiffness 5.0 :damping 0.5}]
+                         (:springs (joints name)))))))))
+        (testing "what jBullet cannot do is said, not dropped"
+          (is (some #(re-find #"generic-joint.*cannot break.*50" %) warnings))
+          (is (some #(re-find #"hinge-joint.*solver iterations.*30" %) warnings)))
+        (testing "the custom-property joint in the same file is made too"
+          (let [segment (control creature "seg-1")]
+            (is (= 1 (count (.getJoints segment))))
+            (is (identical? (control creature "seg-2")
+                            (.getBodyB ^com.jme3.bullet.joints.PhysicsJoint (first (.getJoints segment)))))))))))
+
+(defn- every-frame!
+  "Run (f frame) at the start of every frame of world `w`."
+  [w f]
+  (let [frame (atom 0)]
+    (.attach (.getStateManager w)
+             (proxy [AbstractAppState] []
+               (update [_] (f (swap! frame inc)))))
+    w))
+
+(defn- turn
+  "The rotation that takes `from` to `to`, as [angle about `axis` (right
+  handed), angle of what is left]."
+  [^Quaternion from ^Quaternion to ^Vector3f axis]
+  (let [q (.mult to (.inverse from))
+        q (if (neg? (.getW q)) (.negate q) q)
+        v (Vector3f. (.getX q) (.getY q) (.getZ q))
+        about (* 2 (Math/atan2 (.dot v axis) (.getW q)))
+        rest (.subtract v (.mult axis (.dot v axis)))]
+    [about (* 2 (Math/asin (min 1.0 (.length rest))))]))
+
+(defn- simulate
+  "Build the physics fixture of version `v`, drop it under gravity for
+  `frames` frames of 1/60 s, and measure every frame. Returns, per
+  measure, all its values."
+  [v frames]
+  (let [{:keys [creature joints]} (bp/build! (bp/load-creature (fixture v)))
+        joint (into {} (map (juxt :object :joint)) joints)
+        c (partial control creature)
+        start (into {} (for [n ["fixed-b" "hinge-b" "slider-b" "piston-b" "generic-b" "spring-b"]]
+                         [n [(.getPhysicsLocation (c n)) (.getPhysicsRotation (c n))]]))
+        axis (fn [joint-name col] (.getColumn (bp/constraint-frame (by-name creature joint-name)) (int col)))
+        hinge-axis (axis "hinge-joint" 2)
+        generic-axis (axis "generic-joint" 2)
+        slider-axis (axis "slider-joint" 0)
+        piston-axis (axis "piston-joint" 0)
+        fixed-rel (fn [] (let [a (c "fixed-a") b (c "fixed-b")]
+                           [(.mult (.inverse (.getPhysicsRotation a))
+                                   (.subtract (.getPhysicsLocation b) (.getPhysicsLocation a)))
+                            (.mult (.inverse (.getPhysicsRotation a)) (.getPhysicsRotation b))]))
+        [fixed-p0 fixed-q0] (fixed-rel)
+        moved (fn [n] (.subtract (.getPhysicsLocation (c n)) (first (start n))))
+        off-axis (fn [n ^Vector3f ax] (let [d (moved n)] (.length (.subtract d (.mult ax (.dot d ax))))))
+        seen (atom {})
+        note! (fn [k x] (swap! seen update k (fnil conj []) x))
+        seam (let [p (.getWorldTranslation (by-name creature "point-joint"))]
+               {:a (c "point-a") :b (c "point-b")
+                :pa (body/pivot (c "point-a") p) :pb (body/pivot (c "point-b") p)})
+        w (world/world (util/nodify [creature]) {}
+                       #(world/set-gravity % (Vector3f. 0 -9.81 0)) world/no-op)]
+    (every-frame!
+     w (fn [_]
+         (let [[about rest] (turn (second (start "hinge-b")) (.getPhysicsRotation (c "hinge-b")) hinge-axis)]
+           (note! :hinge (- about))
+           (note! :hinge-bullet (.getHingeAngle ^FrameHingeJoint (joint "hinge-joint")))
+           (note! :hinge-off rest))
+         (let [[about rest] (turn (second (start "generic-b")) (.getPhysicsRotation (c "generic-b")) generic-axis)]
+           (note! :generic about)
+           (note! :generic-off rest))
+         (let [[p q] (fixed-rel)]
+           (note! :fixed-move (.distance ^Vector3f p fixed-p0))
+           (note! :fixed-turn (second (turn fixed-q0 q Vector3f/UNIT_X)))
+           (note! :fixed-turn-x (Math/abs (double (first (turn fixed-q0 q Vector3f/UNIT_X))))))
+         (note! :slider (.dot (moved "slider-b") slider-axis))
+         (note! :slider-off (off-axis "slider-b" slider-axis))
+         (note! :slider-turn (reduce + (map #(Math/abs (double %))
+                                            (turn (second (start "slider-b"))
+                                                  (.getPhysicsRotation (c "slider-b")) slider-axis))))
+         (note! :piston (.dot (moved "piston-b") piston-axis))
+         (note! :piston-off (off-axis "piston-b" piston-axis))
+         (note! :spring (.y (moved "spring-b")))
+         (note! :point-gap (let [{:keys [a b pa pb]} seam
+                                 end (fn [^RigidBodyControl x ^Vector3f p]
+                                       (.add (.getPhysicsLocation x) (.mult (.getPhysicsRotation x) p)))]
+                             (.distance (end a pa) (end b pb))))
+         (note! :motor-spin (.y (.getAngularVelocity (c "motor-b"))))
+         (note! :ball (.y (.getPhysicsLocation (c "ball"))))))
+    (world/run-world! w frames)
+    @seen))
+
+(defn- within?
+  "Do all of `xs` lie in [lo, hi]? (Checked on the extremes, so that a
+  failure prints two numbers, not a whole run.)"
+  [lo hi xs]
+  (<= lo (apply min xs) (apply max xs) hi))
+
+(deftest the-creature-moves-as-its-joints-allow
+  (doseq [v ["b34" "b50"]]
+    (testing v
+      (let [m (simulate v 180)
+            last-of #(peek (m %))
+            tol 0.04]
+        (testing "HINGE: about its axis only, within [-0.5, 0.7], resting at 0.7"
+          (is (within? (- -0.5 tol) (+ 0.7 tol) (m :hinge)))
+          (is (< (Math/abs (- 0.7 (last-of :hinge))) 0.005))
+          (is (< (apply max (m :hinge-off)) 0.01))
+          (is (< (Math/abs (- (bp/hinge-limit (last-of :hinge)) (last-of :hinge-bullet))) 0.001)))
+        (testing "FIXED: the pair keeps its shape"
+          (is (< (apply max (m :fixed-move)) 0.005))
+          (is (< (apply max (concat (m :fixed-turn) (m :fixed-turn-x))) 0.005)))
+        (testing "SLIDER: along its axis only, within [-0.3, 0.8], resting at 0.8"
+          (is (< (apply max (m :slider-off)) 0.005))
+          (is (< (apply max (m :slider-turn)) 0.005))
+          (is (within? (- -0.3 tol) (+ 0.8 tol) (m :slider)))
+          (is (< (Math/abs (- 0.8 (last-of :slider))) tol)))
+        (testing "PISTON: along its axis only, within [-0.2, 0.6]"
+          (is (< (apply max (m :piston-off)) 0.005))
+          (is (within? (- -0.2 tol) (+ 0.6 tol) (m :piston))))
+        (testing "GENERIC: about its Z only, within [-0.3, 0.3], resting at -0.3"
+          (is (within? (- -0.3 tol) (+ 0.3 tol) (m :generic)))
+          (is (< (Math/abs (- -0.3 (last-of :generic))) tol))
+          (is (< (apply max (m :generic-off)) 0.01)))
+        (testing "POINT: the two sides stay together"
+          (is (< (apply max (m :point-gap)) 0.02)))
+        (testing "GENERIC_SPRING: hangs where the spring holds its weight (m g / k = 0.196)"
+          (is (< (Math/abs (- -0.196 (last-of :spring))) 0.03))
+          (is (> (apply min (m :spring)) -1.02)))
+        (testing "MOTOR: spins its hinge at the target 2 rad/s"
+          (is (< (Math/abs (- 2.0 (Math/abs (double (last-of :motor-spin))))) 0.1)))
+        (testing "an active sphere comes to rest on the passive MESH ground"
+          (is (< (Math/abs (- 0.44 (last-of :ball))) 0.02)))))))
+
+(defn- edit!
+  "Change the Blender physics data `key` of object `name` in `creature`
+  with (f settings), settings a Clojure map with String keys."
+  [creature name key f]
+  (let [^Node n (by-name creature name)
+        m (into {} (.getUserData n key))]
+    (.setUserData n key (java.util.HashMap. ^java.util.Map (f m)))
+    creature))
+
+(defn- build-error
+  "The message of the ex-info building `creature` throws, or :no-error.
+  Anything but an ex-info fails the test."
+  [creature]
+  (try (bp/build! creature) :no-error
+       (catch clojure.lang.ExceptionInfo e (ex-message e))))
+
+(deftest bad-constraints-are-named-errors
+  (let [fresh #(bp/load-creature (fixture "b50"))
+        con "blender-rigid-body-constraint"
+        rb "blender-rigid-body"]
+    (is (re-find #"\"point-joint\".*second object \(ob2\) \"nobody\" is not a rigid body"
+                 (build-error (edit! (fresh) "point-joint" con #(assoc % "ob2" "nobody")))))
+    (is (re-find #"\"hinge-joint\".*first object \(ob1\) is not set"
+                 (build-error (edit! (fresh) "hinge-joint" con #(dissoc % "ob1")))))
+    (is (re-find #"\"slider-joint\".*jBullet cannot build constraint type \"UNKNOWN\" \(code 4\)"
+                 (build-error (edit! (fresh) "slider-joint" con #(assoc % "type" "UNKNOWN" "type_code" 4)))))
+    (is (re-find #"\"fixed-joint\".*joins \"fixed-a\" to itself"
+                 (build-error (edit! (fresh) "fixed-joint" con #(assoc % "ob2" "fixed-a")))))
+    (is (re-find #"\"generic-joint\".*limit_ang_z_upper must be a finite number"
+                 (build-error (edit! (fresh) "generic-joint" con #(assoc % "limit_ang_z_upper" Float/NaN)))))
+    (is (re-find #"rigid body \"point-b\".*mass must be a finite number, not \"heavy\""
+                 (build-error (edit! (fresh) "point-b" rb #(assoc % "mass" "heavy")))))
+    (is (re-find #"rigid body \"ball\".*mass must not be negative"
+                 (build-error (edit! (fresh) "ball" rb #(assoc % "mass" (float -1))))))
+    (is (re-find #"rigid body \"ball\".*unknown collision shape"
+                 (build-error (edit! (fresh) "ball" rb #(assoc % "shape" "UNKNOWN" "shape_code" 9)))))
+    (testing "a disabled constraint makes no joint, and says so"
+      (let [{:keys [joints warnings]} (bp/build! (edit! (fresh) "point-joint" con #(assoc % "enabled" false)))]
+        (is (nil? (:joint (first (filter #(= "point-joint" (:object %)) joints)))))
+        (is (some #(re-find #"point-joint.*disabled" %) warnings))))
+    (testing "any one number made NaN, infinite or huge ends in a joint or a named error"
+      (doseq [[obj k x] [["hinge-joint" "limit_ang_z_lower" Float/NaN]
+                         ["spring-joint" "spring_stiffness_z" Float/POSITIVE_INFINITY]
+                         ["motor-joint" "motor_ang_target_velocity" (float 1e30)]
+                         ["slider-b" "friction" Float/NaN]
+                         ["piston-b" "lin_damping" (float 1e30)]
+                         ["spring-b" "margin" Float/NEGATIVE_INFINITY]]]
+        (let [key (if (re-find #"joint" obj) con rb)
+              result (build-error (edit! (fresh) obj key #(assoc % k x)))]
+          (is (or (= :no-error result) (re-find (re-pattern (str "\"" obj "\"")) result))
+              (str obj " " k " " x)))))))
+
+(deftest one-file-two-ways
+  (testing "cortex.body alone builds the custom-property joint of a Physics-tab file"
+    (let [creature (body/body! (bp/load-creature (fixture "b34")))
+          seg (control creature "seg-1")]
+      (is (= 1 (count (.getJoints seg))))))
+  (testing "a Physics-tab file without custom joints needs no \"joints\" empty"
+    (let [creature (bp/load-creature (fixture "b34"))
+          joints (by-name creature "joints")]
+      (.removeFromParent joints)
+      (.removeFromParent (by-name creature "seg-1"))
+      (.removeFromParent (by-name creature "seg-2"))
+      (is (= 9 (count (:joints (bp/build! creature)))))))
+  (testing "physics-body! returns the creature and keeps the warnings"
+    (let [creature (bp/physics-body! (bp/load-creature (fixture "b50")))]
+      (is (instance? Node creature))
+      (is (= 2 (count (bp/warnings creature)))))))
