@@ -191,7 +191,7 @@
   bounds is: once the cube is that big it holds everything there is."
   [{:keys [lo hi]} ^Vector3f center]
   (let [c [(.x center) (.y center) (.z center)]]
-    (Math/sqrt (reduce + (map #(let [d (max (Math/abs (- %1 %2)) (Math/abs (- %1 %3)))] (* d d))
+    (Math/sqrt (reduce + (map #(let [d (max (Math/abs (double (- %1 %2))) (Math/abs (double (- %1 %3))))] (* d d))
                               c lo hi)))))
 
 (defn joint-frame-position

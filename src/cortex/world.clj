@@ -106,25 +106,27 @@
           (deref [] @state)
           (initialize []
             (swap! state assoc :thread (Thread/currentThread))
-            (guard this state #(proxy-super initialize)))
+            (let [^SimpleApplication this this]
+              (guard this state #(proxy-super initialize))))
           (simpleInitApp []
-            (.attach (.getStateManager this) physics-state)
-            (.attachChild (.getRootNode this) root-node)
+            (.attach (.getStateManager ^SimpleApplication this) physics-state)
+            (.attachChild (.getRootNode ^SimpleApplication this) root-node)
             (.addAll (.getPhysicsSpace physics-state) root-node)
             (bind-keys! this key-map)
             (setup-fn this))
           (update []
             (when-not (:error @state)
-              (guard this state #(proxy-super update))
+              (let [^SimpleApplication this this]
+                (guard this state #(proxy-super update)))
               (swap! state update :frames inc)))
           (simpleUpdate [tpf]
             (update-fn this tpf))
           (handleError [message t]
             (swap! state update :error
                    #(or % (ex-info (str "world failed: " message) {} t)))
-            (.stop this))
+            (.stop ^SimpleApplication this))
           (destroy []
-            (try (proxy-super destroy)
+            (try (let [^SimpleApplication this this] (proxy-super destroy))
                  (catch Throwable t
                    (swap! state update :error #(or % t)))
                  (finally (deliver (:done @state) true)))))
@@ -202,7 +204,7 @@
                                :mass 3
                                :position (.add (.getLocation camera)
                                                (.getDirection camera)))]
-         (.setLinearVelocity ^RigidBodyControl (.getControl ball RigidBodyControl)
+         (.setLinearVelocity ^RigidBodyControl (.getControl ^Spatial ball RigidBodyControl)
                              (.mult (.getDirection camera) (float 50)))
          (add-element! world ball (or node (.getRootNode world))))))))
 

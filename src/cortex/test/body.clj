@@ -8,7 +8,8 @@
             [cortex.render :as render]
             [cortex.util :as util]
             [cortex.world :as world])
-  (:import (com.jme3.math ColorRGBA Vector3f)
+  (:import (com.jme3.app SimpleApplication)
+           (com.jme3.math ColorRGBA Vector3f)
            (cortex RatchetTimer)))
 
 (def hand-path "Models/test-creature/hand.blend")
@@ -44,7 +45,7 @@
 (defn setup
   "Point the camera at the creature from above and to the side, light
   the scene and fix the step at 1/60 s. Returns the world."
-  [world]
+  [^SimpleApplication world]
   (doto (.getCamera world)
     (.setLocation (Vector3f. -6.5 7 7))
     (.lookAt (Vector3f. 0 -1 -1) Vector3f/UNIT_Y))
@@ -107,5 +108,5 @@
                   (record-if-asked! w record? "test-worm")
                   (setup w)
                   (world/speed-up w)
-                  (util/display-dilated-time w (.getTimer w)))
+                  (util/display-dilated-time w (.getTimer ^SimpleApplication w)))
                 world/no-op)))
