@@ -315,6 +315,49 @@
           :when (and (:stored-world o) (not (#{5 6 7} (:partype o))))]
     (is (close? (:stored-world o) (:world o) 1e-4) (str f " " (:name o)))))
 
+(defn uv-set
+  "The set of (position, uv) pairs of the Geometries under object Node
+  `n`, rounded, to compare meshes whose corners come in any order."
+  [^Node n]
+  (set (for [c (.getChildren n) :when (instance? Geometry c)
+             :let [m (.getMesh ^Geometry c)
+                   p (.getFloatBuffer m com.jme3.scene.VertexBuffer$Type/Position)
+                   t (some-> (.getBuffer m com.jme3.scene.VertexBuffer$Type/TexCoord)
+                             .getData)]
+             :when t
+             i (range (quot (.limit p) 3))]
+         (mapv #(Math/round (* 1000.0 (double %)))
+               [(.get p (int (* 3 i))) (.get p (int (+ 1 (* 3 i)))) (.get p (int (+ 2 (* 3 i))))
+                (.get ^java.nio.FloatBuffer t (int (* 2 i)))
+                (.get ^java.nio.FloatBuffer t (int (+ 1 (* 2 i))))]))))
+
+(defn uv-pairs
+  "The set of UV pairs of object `name` in file `f`, as read-blend has
+  them, or nil."
+  [f name]
+  (when (.isFile (io/file f))
+    (some->> (:objects (:scene-data (blender/read-blend f)))
+             (some #(when (= name (:name %)) %))
+             :mesh :uvs seq (partition 2) (map vec) set)))
+
+(deftest uvs-agree-across-versions
+  (let [sets (for [v ["b34" "b45" "b50"]]
+               (uv-set (.getChild ^Node (blender/load-blender-model
+                                         (str "test/fixtures/blender-reader/" v "/reader.blend"))
+                                        "shear-parent")))]
+    ;; 24 corners, but corners that share a vertex and a UV are one pair
+    (is (= 14 (count (first sets))))
+    (is (apply = sets)))
+  (when-let [box (uv-pairs (str corpus-dir "/box.blend") "Cube")]
+    (is (= (uv-pairs "test/fixtures/blender-reader/b34/reader.blend" "shear-parent") box)))
+  (when (.isFile (io/file corpus-dir "BlenderDefault_250_Compressed.blend"))
+    (let [cube (some #(when (= "Cube" (:name %)) %)
+                     (:objects (:scene-data (blender/read-blend
+                                             (str corpus-dir "/BlenderDefault_250_Compressed.blend")))))
+          ^floats uv (:uvs (:mesh cube))]
+      (is (= 48 (alength uv)))
+      (is (every? #(<= 0.0 % 1.0) uv)))))
+
 (deftest worm-meta-data
   (let [worm (blender/load-blender-model "Models/test-creature/worm.blend")
         seg (.getChild ^Node worm "worm-1")

@@ -135,8 +135,9 @@
     (aset out (+ i 2) (float (/ rz l)))))
 
 (defn mesh-buffers
-  "Position, normal and index arrays for faces `face-ids` of mesh data
-  `md`: a vertex per face corner (so flat faces keep their own normal;
+  "Position, normal, texture coordinate (when there are UVs) and index
+  arrays for faces `face-ids` of mesh data `md`: a vertex per face
+  corner (so flat faces keep their own normal;
   smooth ones get their vertex's), positions mapped by 3x3 `pm`
   (Blender to Y up, and any residual) and normals by `nm`."
   [md face-ids pm nm]
@@ -146,14 +147,16 @@
         ^doubles vnorm (when (some #(aget smooth (int %)) face-ids) (vertex-normals md))
         nverts (reduce + (map #(aget counts (int %)) face-ids))
         ntris (reduce + (map #(max 0 (- (aget counts (int %)) 2)) face-ids))
+        ^floats uvs (:uvs md)
         pos (float-array (* 3 nverts))
         nor (float-array (* 3 nverts))
+        tex (when uvs (float-array (* 2 nverts)))
         idx (int-array (* 3 ntris))
         fnrm (double-array 3)
         v3 (double-array 3)]
     (loop [[f & more] face-ids vbase 0 tbase 0]
       (if (nil? f)
-        {:positions pos :normals nor :indices idx}
+        {:positions pos :normals nor :texcoords tex :indices idx}
         (let [f (long f)
               s (aget starts f) n (aget counts f)
               _ (mesh/face-normal! positions corners s n fnrm)
@@ -164,6 +167,9 @@
                   o (* 3 (+ vbase k))]
               (dotimes [d 3] (aset v3 d (double (aget positions (+ v d)))))
               (put3! pm pos o v3 false)
+              (when tex
+                (aset tex (* 2 (+ vbase k)) (aget uvs (* 2 (+ s k))))
+                (aset tex (+ 1 (* 2 (+ vbase k))) (aget uvs (+ 1 (* 2 (+ s k))))))
               (if smooth?
                 (do (dotimes [d 3] (aset v3 d (aget vnorm (+ v d))))
                     (put3! nm nor o v3 true))
@@ -179,14 +185,18 @@
             (recur more (+ vbase n) (long tend))))))))
 
 (defn jme-mesh
-  "A jME Mesh of the arrays from `mesh-buffers`."
-  ^Mesh [{:keys [^floats positions ^floats normals ^ints indices]}]
-  (doto (Mesh.)
-    (.setBuffer VertexBuffer$Type/Position 3 (BufferUtils/createFloatBuffer positions))
-    (.setBuffer VertexBuffer$Type/Normal 3 (BufferUtils/createFloatBuffer normals))
-    (.setBuffer VertexBuffer$Type/Index 3 (BufferUtils/createIntBuffer indices))
-    (.updateBound)
-    (.updateCounts)))
+  "A jME Mesh of the arrays from `mesh-buffers` (texture coordinates
+  when the mesh has a UV map)."
+  ^Mesh [{:keys [^floats positions ^floats normals ^floats texcoords ^ints indices]}]
+  (let [m (Mesh.)]
+    (.setBuffer m VertexBuffer$Type/Position 3 (BufferUtils/createFloatBuffer positions))
+    (.setBuffer m VertexBuffer$Type/Normal 3 (BufferUtils/createFloatBuffer normals))
+    (when texcoords
+      (.setBuffer m VertexBuffer$Type/TexCoord 2 (BufferUtils/createFloatBuffer texcoords)))
+    (.setBuffer m VertexBuffer$Type/Index 3 (BufferUtils/createIntBuffer indices))
+    (.updateBound m)
+    (.updateCounts m)
+    m))
 
 (defn- normal-matrix
   "Inverse transpose of 3x3 `m`, for normals (the identity if singular)."

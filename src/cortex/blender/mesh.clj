@@ -267,25 +267,90 @@
           (mesh-fail bf mesh (str "corner " i " names vertex " v " of " nverts)))))
     polys))
 
+(defn- floats-at
+  "`n` groups of `k` floats at pointer `ptr`, `stride` bytes apart from
+  `start`, flat; nil when the pointer dangles or its block is short
+  (texture coordinates are optional, so they are dropped, not fatal)."
+  [bf ptr n k stride start]
+  (when-let [[off avail] (f/pointed-bytes bf ptr)]
+    (let [n (long n) k (long k) stride (long stride) start (long start)]
+      (when (and (>= n 0) (<= (+ (* (max 0 (dec n)) stride) start (* 4 k)) (long avail)))
+        (let [^ByteBuffer buf (:buf bf)
+              out (float-array (* n k))]
+          (dotimes [i n]
+            (dotimes [j k]
+              (aset out (+ (* i k) j)
+                    (.getFloat buf (int (+ (long off) start (* i stride) (* 4 j)))))))
+          out)))))
+
+(defn- uv-name?
+  "Is `name` a user UV map's (not one of Blender's hidden `.` layers)?"
+  [name]
+  (and (string? name) (not (.startsWith ^String name "."))))
+
+(defn uvs
+  "Texture coordinates of the first UV map, two floats per face corner
+  in the order of `corners`, or nil. They live in a float2 corner
+  attribute (5.0 storage; `ldata` layer type 49 from 3.5), in MLoopUV
+  structs (`ldata` type 16, 2.63-3.4) or in MTFace structs, four per
+  face (`fdata` type 5, up to 2.62)."
+  [bf mesh attrs {:keys [^ints starts ^ints counts ^ints corners]} from-mface?]
+  (let [nc (alength corners)
+        nl (long (or (f/fget mesh "totloop") 0))]
+    (or
+     (when-not from-mface?
+       (or (some (fn [{:keys [name domain data single?]}]
+                   (when (and (= 3 domain) (not single?) (uv-name? name)
+                              (when-let [[_ avail] (f/pointed-bytes bf data)]
+                                (= (long avail) (* 8 nl))))
+                     (floats-at bf data nl 2 8 0)))
+                 attrs)
+           (some (fn [{:keys [type name data]}]
+                   (case (long type)
+                     49 (when (uv-name? name) (floats-at bf data nl 2 8 0))
+                     16 (when-let [lay (f/struct-layout bf "MLoopUV")]
+                          (when-let [fi (get-in lay [:by-name "uv"])]
+                            (floats-at bf data nl 2 (:size lay) (:offset fi))))
+                     nil))
+                 (cd-layers bf (f/fget mesh "ldata")))))
+     (when from-mface?
+       (let [nf (alength starts)
+             lay (f/struct-layout bf "MTFace")
+             fi (get-in lay [:by-name "uv"])
+             layer (some #(when (= 5 (:type %)) %) (cd-layers bf (f/fget mesh "fdata")))]
+         (when (and lay fi layer)
+           (when-let [^floats per-face (floats-at bf (:data layer) nf 8 (:size lay) (:offset fi))]
+             (let [out (float-array (* 2 nc))]
+               (dotimes [i nf]
+                 (dotimes [k (aget counts i)]
+                   (let [c (+ (aget starts i) k)]
+                     (aset out (* 2 c) (aget per-face (+ (* 8 i) (* 2 k))))
+                     (aset out (+ 1 (* 2 c)) (aget per-face (+ (* 8 i) (* 2 k) 1))))))
+               out))))))))
+
 (defn mesh-data
   "The base mesh of the Mesh struct `mesh`: {:name, :positions (flat
   floats, Blender coordinates), :starts :counts :corners (faces as runs
   of vertex indices), :mats (material slot per face), :smooth (per
-  face)}. Faces come from the newest layout the file has."
+  face), :uvs (two floats per corner, or nil)}. Faces come from the
+  newest layout the file has."
   [bf mesh]
   (let [attrs (storage-attributes bf mesh)
         pos (positions bf mesh attrs)
         nverts (quot (alength ^floats pos) 3)
-        polys (or (when (pos? (long (or (f/fget mesh "totpoly") 0)))
-                    (or (when (f/has-field? mesh "poly_offset_indices")
-                          (polys-from-offsets bf mesh attrs))
-                        (polys-from-mpoly bf mesh attrs)))
+        loops (when (pos? (long (or (f/fget mesh "totpoly") 0)))
+                (or (when (f/has-field? mesh "poly_offset_indices")
+                      (polys-from-offsets bf mesh attrs))
+                    (polys-from-mpoly bf mesh attrs)))
+        polys (or loops
                   (polys-from-mface bf mesh)
                   {:starts (int-array 0) :counts (int-array 0) :corners (int-array 0)
-                   :mats (int-array 0) :smooth (boolean-array 0)})]
-    (assoc (check-polys bf mesh polys nverts)
+                   :mats (int-array 0) :smooth (boolean-array 0)})
+        polys (check-polys bf mesh polys nverts)]
+    (assoc polys
            :name (f/id-name mesh)
-           :positions pos)))
+           :positions pos
+           :uvs (uvs bf mesh attrs polys (nil? loops)))))
 
 (defn vertex
   "Vertex `i` of flat float array `pos` as a double array."
