@@ -216,6 +216,10 @@
         rest (.subtract v (.mult axis (.dot v axis)))]
     [about (* 2 (Math/asin (min 1.0 (.length rest))))]))
 
+(def sim-bodies
+  "The active bodies whose resting places Blender's own simulation gives."
+  ["fixed-b" "hinge-b" "slider-b" "piston-b" "generic-b" "spring-b" "ball"])
+
 (defn- simulate
   "Build the physics fixture of version `v`, drop it under gravity for
   `frames` frames of 1/60 s, and measure every frame. Returns, per
@@ -273,7 +277,13 @@
          (note! :motor-spin (.y (.getAngularVelocity (c "motor-b"))))
          (note! :ball (.y (.getPhysicsLocation (c "ball"))))))
     (world/run-world! w frames)
-    @seen))
+    (assoc @seen :final (into {} (for [n sim-bodies]
+                                   (let [p (.getPhysicsLocation (c n))] [n [(.x p) (.y p) (.z p)]]))))))
+
+(def ^:private simulated
+  "`simulate`, run once per version and length for all the tests that
+  measure it."
+  (memoize simulate))
 
 (defn- within?
   "Do all of `xs` lie in [lo, hi]? (Checked on the extremes, so that a
@@ -284,7 +294,7 @@
 (deftest the-creature-moves-as-its-joints-allow
   (doseq [v ["b34" "b50"]]
     (testing v
-      (let [m (simulate v 180)
+      (let [m (simulated v 240)
             last-of #(peek (m %))
             tol 0.04]
         (testing "HINGE: about its axis only, within [-0.5, 0.7], resting at 0.7"
@@ -385,3 +395,35 @@
     (let [creature (bp/physics-body! (bp/load-creature (fixture "b50")))]
       (is (instance? Node creature))
       (is (= 2 (count (bp/warnings creature)))))))
+
+(defn- blender-sim
+  "What Blender's own simulation of the physics fixture of version `v`
+  says (scripts/blender/simulate_physics.py): each body's place in the
+  last frame (jME axes), and the motor body's spin about the vertical
+  over the last frame, in rad/s."
+  [v]
+  (let [sim (read-json (slurp (str "test/fixtures/blend/" v "/physics_sim.json")))
+        fps (get sim "fps")
+        at (fn [n i] (get-in sim ["objects" n i]))
+        place (fn [m] (let [[x y z] (map #(nth % 3) (take 3 m))] [x z (- y)]))
+        yaw (fn [m] (Math/atan2 (get-in m [1 0]) (get-in m [0 0])))]
+    {:final (into {} (for [n sim-bodies] [n (place (at n 2))]))
+     :motor-spin (* fps (- (yaw (at "motor-b" 2)) (yaw (at "motor-b" 1))))}))
+
+(deftest agrees-with-blenders-own-simulation
+  (doseq [v ["b34" "b50"]]
+    (testing v
+      (let [ours (simulated v 240)
+            theirs (blender-sim v)]
+        (testing "after 4 s every jointed body rests where Blender's does"
+          (doseq [n (remove #{"ball"} sim-bodies)]
+            (is (< (apply max (map #(Math/abs (- (double %1) (double %2)))
+                                   (get-in ours [:final n]) (get-in theirs [:final n])))
+                   0.01)
+                n)))
+        (testing "the motor turns the same way, as fast"
+          (is (< (Math/abs (- (:motor-spin theirs) (peek (:motor-spin ours)))) 0.05)))
+        (testing "the ball rests on the MESH ground one collision margin (0.04) higher than in Blender"
+          (is (< (Math/abs (- (+ 0.04 (second (get-in theirs [:final "ball"])))
+                              (second (get-in ours [:final "ball"]))))
+                 0.005)))))))
