@@ -238,7 +238,8 @@
   parented as in Blender, whose world transform is the object's world
   matrix in Y-up. Mesh objects get Geometry children; custom
   properties become user data, plus \"blender-type\" (MESH, EMPTY,
-  LIGHT, CAMERA, ...) unless a property of that name exists.
+  LIGHT, CAMERA, ...) unless a property of that name exists, plus the
+  object's Blender physics (see cortex.blender.physics/user-data).
   Materials are made with asset manager `am` (none when nil)."
   ^Node [am root-name sd]
   (let [root (Node. (str root-name))
@@ -250,6 +251,7 @@
                          [(:key o)
                           (let [n (Node. (str (:name o)))]
                             (set-user-data! n (:properties o))
+                            (set-user-data! n (:physics o))
                             (when-not (contains? (:properties o) "blender-type")
                               (.setUserData n "blender-type" (str (:type o))))
                             n)]))]

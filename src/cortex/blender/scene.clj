@@ -4,7 +4,8 @@
   fields, custom properties and material colours."
   (:require [cortex.blender.file :as f]
             [cortex.blender.math :as m]
-            [cortex.blender.mesh :as mesh]))
+            [cortex.blender.mesh :as mesh]
+            [cortex.blender.physics :as physics]))
 
 (def object-types
   "Blender's object type codes, named as Blender's Python API names
@@ -249,6 +250,7 @@
      :materials (material-slots bf ob data)
      :color (or (f/fget ob "col") [1.0 1.0 1.0 1.0])
      :modifiers (count (f/list-seq bf (f/fget ob "modifiers")))
+     :physics (physics/user-data bf ob)
      :mesh-ref (when (and (= type "MESH") data (= "Mesh" (:name (:layout data)))) data)}))
 
 (defn world-matrices
