@@ -130,6 +130,15 @@
 (defn control ^RigidBodyControl [root name]
   (.getControl (bp/body-spatial (by-name root name)) RigidBodyControl))
 
+(deftest the-loader-attaches-physics
+  (let [root (blender/load-blender-model (fixture "b50"))]
+    (is (= "HINGE" (:type (bp/rigid-body-constraint (by-name root "hinge-joint")))))
+    (is (= ["hinge-a" "hinge-b"] ((juxt :ob1 :ob2) (bp/rigid-body-constraint (by-name root "hinge-joint")))))
+    (is (= "MESH" (:shape (bp/rigid-body (by-name root "hinge-b")))))
+    (is (nil? (bp/rigid-body (by-name root "seg-1"))))
+    (testing "a Geometry answers for its object"
+      (is (= "ACTIVE" (:type (bp/rigid-body (bp/body-spatial (by-name root "ball")))))))))
+
 (def joint-classes
   {"FIXED" SixDofJoint "POINT" SixDofJoint "GENERIC" SixDofJoint "GENERIC_SPRING" SixDofJoint
    "MOTOR" SixDofJoint "HINGE" FrameHingeJoint "SLIDER" SliderJoint "PISTON" SliderJoint})
