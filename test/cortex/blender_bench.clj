@@ -18,12 +18,12 @@
        (catch Throwable _ nil)))
 
 (defn medians
-  "Median times of `fs` (thunks) over `runs` rounds, after three rounds
-  to warm up. Each round calls every thunk once, so a machine that is
-  busy for a while slows all of them alike; a thunk that ever throws
-  gets nil."
+  "Median times of `fs` (thunks) over `runs` rounds, after ten rounds
+  to let the JIT compile both readers. Each round calls every thunk
+  once, so a machine that is busy for a while slows all of them alike;
+  a thunk that ever throws gets nil."
   [runs fs]
-  (dotimes [_ 3] (doseq [f fs] (time-ms f)))
+  (dotimes [_ 10] (doseq [f fs] (time-ms f)))
   (let [rounds (for [_ (range runs)] (mapv time-ms fs))]
     (vec (for [i (range (count fs))
                :let [ts (map #(nth % i) rounds)]]

@@ -113,10 +113,14 @@
       (when (aget smooth i)
         (let [s (aget starts i) n (aget counts i)]
           (mesh/face-normal! positions corners s n nrm)
-          (dotimes [k n]
-            (let [v (* 3 (aget corners (+ s k)))]
-              (dotimes [d 3]
-                (aset acc (+ v d) (+ (aget acc (+ v d)) (aget nrm d)))))))))
+          (let [x (aget nrm 0) y (aget nrm 1) z (aget nrm 2)]
+            (dotimes [k n]
+              (let [v (unchecked-multiply-int 3 (aget corners (unchecked-add-int s (int k))))
+                    v1 (unchecked-inc-int v)
+                    v2 (unchecked-inc-int v1)]
+                (aset acc v (+ (aget acc v) x))
+                (aset acc v1 (+ (aget acc v1) y))
+                (aset acc v2 (+ (aget acc v2) z))))))))
     acc))
 
 (defn- put3!

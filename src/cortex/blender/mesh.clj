@@ -455,15 +455,16 @@
   `corners[s..s+n)`, vertices in flat `pos`; no allocation, for the
   mesh builder's inner loop."
   ^doubles [^floats pos ^ints corners s n ^doubles out]
-  (let [s (long s) n (long n)]
-   (loop [i 0 x 0.0 y 0.0 z 0.0]
+  (let [s (int s) n (int n)]
+   (loop [i (int 0) x 0.0 y 0.0 z 0.0]
     (if (= i n)
       (doto out (aset 0 x) (aset 1 y) (aset 2 z))
-      (let [a (* 3 (aget corners (+ s i)))
-            b (* 3 (aget corners (+ s (mod (inc i) n))))
+      (let [j (unchecked-inc-int i)
+            a (unchecked-multiply-int 3 (aget corners (unchecked-add-int s i)))
+            b (unchecked-multiply-int 3 (aget corners (unchecked-add-int s (if (= j n) (int 0) j))))
             ax (aget pos a) ay (aget pos (+ a 1)) az (aget pos (+ a 2))
             bx (aget pos b) by (aget pos (+ b 1)) bz (aget pos (+ b 2))]
-        (recur (inc i)
+        (recur j
                (+ x (* (- ay by) (+ az bz)))
                (+ y (* (- az bz) (+ ax bx)))
                (+ z (* (- ax bx) (+ ay by)))))))))
