@@ -469,6 +469,11 @@
       (fails-clearly (write-tmp "cut-gzip.blend" (java.util.Arrays/copyOf g (quot (alength g) 2)))
                      #"malformed|EOF|end"))))
 
+(deftest decompression-is-bounded
+  ;; a small gzip that would expand far past the limit (lowered here)
+  (with-redefs [file/max-bytes 100000]
+    (fails-clearly (write-tmp "bomb.blend" (gzip (byte-array 5000000))) #"decompresses to more than")))
+
 (deftest missing-model-fails-clearly
   (let [e (try (blender/load-blender-model "Models/no-such-creature.blend") nil
                (catch ExceptionInfo e e))]

@@ -19,9 +19,10 @@
 
 (def max-bytes
   "The most bytes a decompressed file may have: Java arrays stop just
-  short of 2 GiB, and a third of the heap leaves room to work."
+  short of 2 GiB, and an eighth of the heap leaves room for the copies
+  a growing output buffer makes on the way."
   (long (min (- Integer/MAX_VALUE 64)
-             (quot (.maxMemory (Runtime/getRuntime)) 3))))
+             (quot (.maxMemory (Runtime/getRuntime)) 8))))
 
 (defn- drain
   "All bytes of stream `in`, refusing to grow past `max-bytes`."
