@@ -90,8 +90,9 @@
 (defn plan
   "What lein run should do, given its `args` and whether there is a
   `display?`: a map with :action :help, :error (with :message), or
-  :window or :offscreen with :creature, :frames, :out, :size and
-  :record? (whether to record frames)."
+  :window or :offscreen with :creature, :frames, :out, :size, :record?
+  (whether to record frames) and :fallback? (whether to draw offscreen
+  when the window cannot open)."
   [args display?]
   (let [{:keys [options errors summary]} (cli/parse-opts args cli-options)
         {:keys [creature seconds out resolution headless window help]} options]
@@ -108,6 +109,7 @@
        :frames (max 1 (Math/round (* seconds frames-per-second)))
        :out (or out (str "out/" creature))
        :record? (or (boolean headless) (not display?) (some? out))
+       :fallback? (not window)
        :size resolution})))
 
 (defn- still!
@@ -151,14 +153,23 @@
 
 (defn show-window!
   "Open the demo in a window and wait until it is closed, recording to
-  the planned folder when asked to."
-  [{:keys [creature out size record?]}]
+  the planned folder when asked to. When the window cannot even open (a
+  display without OpenGL, say) and the plan allows it, draw offscreen
+  instead."
+  [{:keys [creature out size record? fallback?] :as plan}]
   (let [w (demo-world (cortex.main/creature creature))]
     (when record? (render/record! w out))
     (println "space: fire a ball | G/U: gravity on/off | H: show physics |"
              "W A S D Q Z, mouse: camera | Esc: quit")
-    (render/await-world! (render/start-window! w {:size size}))
-    (when record? (report-files! out creature))))
+    (try
+      (render/await-world! (render/start-window! w {:size size}))
+      (when record? (report-files! out creature))
+      (catch clojure.lang.ExceptionInfo e
+        (if (and fallback? (zero? (:frames @w)))
+          (do (binding [*out* *err*]
+                (println (str "cortex: no window (" (ex-message e) "); drawing offscreen instead")))
+              (show-offscreen! plan))
+          (throw e))))))
 
 (defn -main
   "lein run [options]: see `cli-options`, or lein run --help."

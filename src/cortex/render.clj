@@ -124,7 +124,11 @@
   or Escape pressed) and its thread has ended. Throws an ex-info if it
   failed. Returns the world."
   [world]
-  @(:done @world)
+  (loop []
+    (when-not (deref (:done @world) 200 false)
+      (let [{:keys [error ^Thread thread]} @world]
+        (when-not (and error (not (some-> thread .isAlive)))
+          (recur)))))
   (some-> ^Thread (:thread @world) (.join 10000))
   (when-let [e (:error @world)]
     (throw (ex-info (str "world failed after " (:frames @world) " frames: " (ex-message e))

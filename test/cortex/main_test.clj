@@ -11,15 +11,18 @@
 (deftest reading-the-command-line
   (testing "defaults: a window when there is a display, offscreen when not"
     (is (= {:action :window :creature "worm" :frames 240 :out "out/worm"
-            :record? false :size [640 480]}
+            :record? false :fallback? true :size [640 480]}
            (main/plan [] true)))
     (is (= {:action :offscreen :creature "worm" :frames 240 :out "out/worm"
-            :record? true :size [640 480]}
+            :record? true :fallback? true :size [640 480]}
            (main/plan [] false))))
   (testing "options"
-    (is (= {:action :offscreen :creature "hand" :frames 90 :out "x" :record? true :size [320 240]}
+    (is (= {:action :offscreen :creature "hand" :frames 90 :out "x" :record? true
+            :fallback? true :size [320 240]}
            (main/plan ["--creature" "hand" "-s" "1.5" "-o" "x" "-r" "320x240" "--headless"] true)))
-    (is (:record? (main/plan ["--out" "y"] true)) "a window records when given a folder"))
+    (is (:record? (main/plan ["--out" "y"] true)) "a window records when given a folder")
+    (is (false? (:fallback? (main/plan ["--window"] true)))
+        "an explicit --window fails rather than falling back"))
   (testing "help"
     (is (= :help (:action (main/plan ["--help"] false))))
     (is (re-find #"--creature" (:message (main/plan ["-h"] false)))))
