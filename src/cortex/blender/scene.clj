@@ -229,6 +229,40 @@
                      (if (seen (:offset r)) [out seen] [(conj out r) (conj seen (:offset r))]))
                    [[] #{}] all))))
 
+(defn- find-bone
+  "The Bone named `name` in the tree of bones of armature `arm`
+  (`bonebase`, then each bone's `childbase`), visiting each at most
+  once."
+  [bf arm name]
+  (loop [todo (vec (f/list-seq bf (f/fget arm "bonebase") "Bone")) seen #{}]
+    (when-let [b (peek todo)]
+      (let [todo (pop todo)]
+        (cond
+          (seen (:offset b)) (recur todo seen)
+          (= name (f/fget b "name")) b
+          :else (recur (into todo (f/list-seq bf (f/fget b "childbase") "Bone"))
+                       (conj seen (:offset b))))))))
+
+(defn bone-matrix
+  "For an object parented to a bone (partype 7): the bone's pose matrix
+  in its armature's frame, moved from the bone's head to its tail, as
+  Blender's ob_parbone does; nil when the pose or bone is missing. The
+  pose matrices are saved with the armature object's pose."
+  [bf ob]
+  (let [par (f/deref-ptr bf (f/fget ob "parent") "Object")
+        name (f/fget ob "parsubstr")
+        pose (f/deref-ptr bf (f/fget par "pose") "bPose")
+        pchan (some #(when (= name (f/fget % "name")) %)
+                    (f/list-seq bf (f/fget pose "chanbase") "bPoseChannel"))
+        arm (f/deref-ptr bf (f/fget par "data") "bArmature")
+        bone (when arm (find-bone bf arm name))]
+    (when-let [pm (f/fget pchan "pose_mat")]
+      (let [m (m/from-blender pm)
+            len (double (or (f/fget bone "length") 0.0))
+            y (mapv #(nth % 1) (subvec m 0 3))
+            t (mapv + (m/translation m) (mapv #(* len (double %)) y))]
+        (m/mat3->mat4 (m/mat4->mat3 m) t)))))
+
 (defn object-info
   "What the reader keeps of the Object struct `ob`. Objects are known by
   :key, the byte offset of their struct in the file (old pointers are
@@ -243,6 +277,8 @@
      :rotation-mode (rotation-modes (f/fget ob "rotmode") "XYZ")
      :parent-key (:offset (f/deref-ptr bf (f/fget ob "parent") "Object"))
      :partype (bit-and (long (or (f/fget ob "partype") 0)) 15)
+     :bone-matrix (when (= 7 (bit-and (long (or (f/fget ob "partype") 0)) 15))
+                    (bone-matrix bf ob))
      :local (local-matrix ob)
      :parentinv (m/from-blender (f/fget ob "parentinv"))
      :stored-world (when obmat (m/from-blender obmat))
@@ -255,10 +291,12 @@
 
 (defn world-matrices
   "Each object's world matrix, by key: parent's world * parentinv *
-  local, as Blender's solve_parenting does for object parents. A parent
-  cycle or a parent missing from `infos` counts as no parent. Bone and
-  vertex parents (partype 7, 5, 6) need pose or mesh evaluation; for
-  them the world matrix the file stores is used when it has one."
+  local, as Blender's solve_parenting does for object parents, with the
+  bone's matrix after the parent's for bone parents (partype 7). A
+  parent cycle or a parent missing from `infos` counts as no parent.
+  Vertex parents (partype 5, 6) need the parent mesh evaluated; for
+  them, and for a bone that cannot be found, the world matrix the file
+  stores is used when it has one."
   [infos]
   (let [by-key (into {} (map (juxt :key identity)) infos)]
     (loop [todo (map :key infos) done {}]
@@ -271,10 +309,13 @@
                           chain
                           (recur (:parent-key (by-key q)) (conj chain q) (conj seen q))))
                 done (reduce (fn [done q]
-                               (let [{:keys [parent-key partype local parentinv stored-world]} (by-key q)
+                               (let [{:keys [parent-key partype local parentinv stored-world
+                                             bone-matrix]} (by-key q)
                                      pw (get done parent-key)]
                                  (assoc done q
                                         (cond
+                                          (and pw bone-matrix)
+                                          (m/mat-mul (m/mat-mul (m/mat-mul pw bone-matrix) parentinv) local)
                                           (and (#{5 6 7} partype) stored-world) stored-world
                                           pw (m/mat-mul (m/mat-mul pw parentinv) local)
                                           :else local))))
