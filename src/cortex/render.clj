@@ -20,8 +20,6 @@
                      UnixDomainSocketAddress)
            (java.nio ByteBuffer ByteOrder)
            (java.nio.channels SocketChannel)
-           (java.util.concurrent ArrayBlockingQueue ThreadFactory ThreadPoolExecutor
-                                 ThreadPoolExecutor$CallerRunsPolicy TimeUnit)
            (javax.imageio ImageIO)))
 
 (defn parse-display
@@ -276,66 +274,26 @@
        ([n done?]
         (when done? (show! n "\n")))))))
 
-(defn- copy-image
-  "A copy of a TYPE_INT_RGB image."
-  ^BufferedImage [^BufferedImage image]
-  (let [copy (BufferedImage. (.getWidth image) (.getHeight image) BufferedImage/TYPE_INT_RGB)
-        ^ints from (.getData ^DataBufferInt (.getDataBuffer (.getRaster image)))
-        ^ints to (.getData ^DataBufferInt (.getDataBuffer (.getRaster copy)))]
-    (System/arraycopy from 0 to 0 (alength from))
-    copy))
-
-(defn- png-writers
-  "A pool of background threads for writing PNGs, one fewer than the
-  machine has cores (one to three), with room for two waiting frames
-  per thread; when that is full the caller writes the frame itself."
-  ^ThreadPoolExecutor []
-  (let [n (-> (.availableProcessors (Runtime/getRuntime)) dec (max 1) (min 3))
-        made (atom 0)]
-    (ThreadPoolExecutor. (int n) (int n) 0 TimeUnit/MILLISECONDS
-                         (ArrayBlockingQueue. (int (* 2 n)))
-                         (reify ThreadFactory
-                           (newThread [_ r]
-                             (doto (Thread. ^Runnable r (str "cortex PNG writer " (swap! made inc)))
-                               (.setDaemon true))))
-                         (ThreadPoolExecutor$CallerRunsPolicy.))))
-
 (defn record!
   "Write every frame `world` draws, from its first, to folder `dir` as
   frame-000001.png, frame-000002.png, ... (see `frame-file`), removing
   frames an earlier recording left there. Options: :progress, a
   function called with the number of frames written so far after each
   frame, and with that number and true at the end (default: a counter
-  on standard error, see `progress-printer`; nil for none). Call it from a setup
-  function or before the world starts. Throws an ex-info when `dir`
-  cannot be written. Returns the world."
+  on standard error, see `progress-printer`; nil for none). Call it
+  from a setup function or before the world starts. Throws an ex-info
+  when `dir` cannot be written. Returns the world."
   ([world dir] (record! world dir {}))
   ([world dir {:keys [progress] :or {progress (progress-printer)}}]
    (let [folder (prepare-folder! dir)
-         n (atom 0)
-         failure (atom nil)
-         writers (delay (png-writers))
-         check! #(when-let [e @failure]
-                   (throw (ex-info (str "could not write a frame: " (ex-message e)) {} e)))]
+         n (atom 0)]
      (grab-frames! world
                    (fn [image]
-                     (check!)
-                     (let [copy (copy-image image)
-                           file (frame-file folder (swap! n inc))]
-                       (.execute ^ThreadPoolExecutor @writers
-                                 (fn []
-                                   (try (write-png! copy file)
-                                        (catch Throwable t
-                                          (compare-and-set! failure nil t))))))
+                     (write-png! image (frame-file folder (swap! n inc)))
                      (when progress (progress @n)))
                    (fn []
-                     (when (realized? writers)
-                       (doto ^ThreadPoolExecutor @writers
-                         (.shutdown)
-                         (.awaitTermination 10 TimeUnit/MINUTES)))
                      (when (and progress (pos? @n))
-                       (progress @n true))
-                     (check!))))))
+                       (progress @n true)))))))
 
 (defn mp4-args
   "ffmpeg's arguments to make `out` from the frames in `dir`, played at
