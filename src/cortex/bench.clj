@@ -335,19 +335,27 @@
 (defn- progress [& args]
   (binding [*out* *err*] (apply println "bench:" args) (flush)))
 
+(defn- blender-rows
+  "A row for each Blender creature, starting from `row`: its segment
+  count merged with (measure make), or :skipped with the reason when
+  the creature cannot be loaded. `verb` names the step in the progress
+  line."
+  [verb row measure]
+  (for [name ["worm" "hand"]
+        :let [{:keys [make skipped]} (blender-maker name)
+              row (assoc row :creature name)]]
+    (if make
+      (do (progress verb name)
+          (merge row {:segments (count (body/segments (make)))} (measure make)))
+      (assoc row :skipped skipped))))
+
 (defn run-build!
   "Build rows: the median split of body! for the Blender creatures and
   for generated chains and trees of every planned size."
   [{:keys [sizes] :as opts}]
   (vec
    (concat
-    (for [name ["worm" "hand"]
-          :let [{:keys [make skipped]} (blender-maker name)]]
-      (if make
-        (do (progress "building" name)
-            (merge {:creature name :kind "blender" :segments (count (body/segments (make)))}
-                   (measure-build! make opts)))
-        {:creature name :kind "blender" :skipped skipped}))
+    (blender-rows "building" {:kind "blender"} #(measure-build! % opts))
     (for [kind ["chain" "tree"] n sizes]
       (do (progress "building" (str kind "-" n))
           (merge {:creature (str kind "-" n) :kind kind :segments n}
@@ -381,14 +389,9 @@
   [{:keys [sizes] :as opts}]
   (vec
    (concat
-    (for [name ["worm" "hand"]
-          :let [{:keys [make skipped]} (blender-maker name)]]
-      (if make
-        (do (progress "simulating" name)
-            (let [n (count (body/segments (make)))]
-              (merge {:creature name :segments n}
-                     (measure-sim! make (update opts :frames frames-for n)))))
-        {:creature name :skipped skipped}))
+    (blender-rows "simulating" {}
+                  #(measure-sim! % (update opts :frames frames-for
+                                           (count (body/segments (%))))))
     (for [n sizes]
       (do (progress "simulating" (str "chain-" n))
           (merge {:creature (str "chain-" n) :segments n}

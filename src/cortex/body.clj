@@ -10,10 +10,9 @@
            (com.jme3.bullet.collision.shapes HullCollisionShape)
            (com.jme3.bullet.control RigidBodyControl)
            (com.jme3.bullet.joints ConeJoint HingeJoint SixDofJoint)
-           (com.jme3.collision CollisionResult CollisionResults)
-           (com.jme3.math Matrix3f Quaternion Vector3f)
-           (com.jme3.scene Geometry Mesh Node Spatial VertexBuffer$Type)
-           (com.jme3.util BufferUtils)))
+           (com.jme3.collision CollisionResults)
+           (com.jme3.math Matrix3f Vector3f)
+           (com.jme3.scene Geometry Mesh Node Spatial VertexBuffer$Type)))
 
 (def max-hull-points
   "The most points a segment's hull keeps. Bullet advises convex hulls of
@@ -23,10 +22,10 @@
 
 (defn mesh-points
   "The distinct vertex positions of `mesh`, each multiplied by `scale`,
-  as Vector3fs."
+  as Vector3fs; none when the mesh has no positions."
   [^Mesh mesh ^Vector3f scale]
   (let [buffer (.getFloatBuffer mesh VertexBuffer$Type/Position)
-        n (quot (.limit buffer) 3)]
+        n (if buffer (quot (.limit buffer) 3) 0)]
     (distinct
      (for [i (range n)]
        (Vector3f. (* (.x scale) (.get buffer (int (* 3 i))))
@@ -63,6 +62,10 @@
   ^HullCollisionShape [^Geometry geom]
   (let [points (simplify-hull (mesh-points (.getMesh geom) (.getWorldScale geom))
                               max-hull-points)]
+    (when (< (count points) 4)
+      (throw (ex-info (str "segment " (pr-str (.getName geom)) " has " (count points)
+                           " distinct vertices; a solid needs at least 4")
+                      {:object (.getName geom) :vertices (count points)})))
     (HullCollisionShape. (float-array (mapcat (fn [^Vector3f p] [(.x p) (.y p) (.z p)])
                                               points)))))
 
@@ -79,7 +82,7 @@
       :else (throw (ex-info (str "object " (pr-str (.getName ^Spatial owner))
                                  ": mass must be a non-negative number, not "
                                  (pr-str m))
-                            {:object (.getName geom) :mass m})))))
+                            {:object (.getName ^Spatial owner) :mass m})))))
 
 (defn segments
   "The Geometries of `creature`: its segments."

@@ -7,7 +7,7 @@
   (:import (com.jme3.bullet.control RigidBodyControl)
            (com.jme3.bullet.joints HingeJoint PhysicsJoint SixDofJoint ConeJoint)
            (com.jme3.math FastMath Quaternion Vector3f)
-           (com.jme3.scene Geometry Node)
+           (com.jme3.scene Geometry Node VertexBuffer$Type)
            (com.jme3.scene.shape Box Sphere)))
 
 (defn- segment
@@ -66,6 +66,17 @@
         (is (> (apply max (map #(.dot ^Vector3f d ^Vector3f %) hull)) 0.93))))
     (testing "small hulls are kept whole"
       (is (= 8 (count (body/simplify-hull (body/mesh-points (Box. 1 1 1) (Vector3f. 1 1 1)) 100)))))))
+
+(deftest a-segment-needs-a-solid-mesh
+  (let [flat (Geometry. "flat" (doto (com.jme3.scene.Mesh.)
+                                 (.setBuffer VertexBuffer$Type/Position 3
+                                             (float-array [0 0 0 1 0 0 0 1 0]))
+                                 (.updateBound)))
+        empty (Geometry. "empty" (com.jme3.scene.Mesh.))]
+    (doseq [[g n] [[flat 3] [empty 0]]]
+      (is (re-find (re-pattern (str "segment \"" (.getName g) "\" has " n " distinct vertices"))
+                   (try (body/physical! (util/nodify [g])) ""
+                        (catch clojure.lang.ExceptionInfo e (ex-message e))))))))
 
 (deftest hull-points-carry-world-scale
   (let [points (body/mesh-points (Box. 1 1 1) (Vector3f. 2 3 4))
