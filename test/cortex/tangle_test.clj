@@ -38,3 +38,10 @@
   (testing "no source file lives outside the book"
     (doseq [f (tangle/untangled "org" ["src" "test" "java"] [".clj" ".java"])]
       (is (nil? f) (str f " is not tangled from any org/ chapter")))))
+
+(deftest every-chapter-is-in-the-index
+  (let [index (slurp "org/index.org")]
+    (doseq [chapter (tangle/chapters "org")
+            :let [name (.getName chapter)]
+            :when (not= name "index.org")]
+      (is (str/includes? index (str "[[file:" name "]")) (str name " is not listed in org/index.org")))))
