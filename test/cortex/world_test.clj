@@ -95,7 +95,7 @@
     (world/run-world! w 60)
     (is (= 5.0 (double (.y (.getWorldTranslation b)))))))
 
-(deftest keys
+(deftest key-bindings
   (is (= "KeyTrigger" (.getSimpleName (class (world/trigger "key-space")))))
   (is (thrown-with-msg? clojure.lang.ExceptionInfo #"key-nope"
                         (world/trigger "key-nope")))
