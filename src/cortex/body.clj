@@ -10,6 +10,7 @@
            (com.jme3.bullet.collision.shapes HullCollisionShape)
            (com.jme3.bullet.control RigidBodyControl)
            (com.jme3.bullet.joints ConeJoint HingeJoint SixDofJoint)
+           (com.jme3.bullet.objects PhysicsRigidBody)
            (com.jme3.collision CollisionResults)
            (com.jme3.math Matrix3f Vector3f)
            (com.jme3.scene Geometry Mesh Node Spatial VertexBuffer$Type)))
@@ -394,6 +395,14 @@
   ^Vector3f [^RigidBodyControl control ^Vector3f world-point]
   (.mult (.inverse (.getPhysicsRotation control))
          (.subtract world-point (.getPhysicsLocation control))))
+
+(defn pivot-in-world
+  "Where `local-point`, in the frame of the rigid body `body` (as `pivot`
+  gives it), is in the world now: the inverse of `pivot`. The two ends
+  of a joint, each seen from its own body, should stay together; how far
+  apart they are is how far the joint has given."
+  ^Vector3f [^PhysicsRigidBody body ^Vector3f local-point]
+  (.add (.getPhysicsLocation body) (.mult (.getPhysicsRotation body) local-point)))
 
 (defn connect
   "Join the physical segments `obj-a` and `obj-b` where the empty `joint`

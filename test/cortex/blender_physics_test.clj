@@ -279,10 +279,8 @@
          (note! :piston (.dot (moved "piston-b") piston-axis))
          (note! :piston-off (off-axis "piston-b" piston-axis))
          (note! :spring (.y (moved "spring-b")))
-         (note! :point-gap (let [{:keys [a b pa pb]} seam
-                                 end (fn [^RigidBodyControl x ^Vector3f p]
-                                       (.add (.getPhysicsLocation x) (.mult (.getPhysicsRotation x) p)))]
-                             (.distance (end a pa) (end b pb))))
+         (note! :point-gap (let [{:keys [a b pa pb]} seam]
+                             (.distance (body/pivot-in-world a pa) (body/pivot-in-world b pb))))
          (note! :motor-spin (.y (.getAngularVelocity (c "motor-b"))))
          (note! :ball (.y (.getPhysicsLocation (c "ball"))))))
     (world/run-world! w frames)

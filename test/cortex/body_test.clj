@@ -196,10 +196,8 @@
 (defn- joint-gap
   "How far apart the two ends of `joint` are in the world."
   [^PhysicsJoint joint]
-  (let [end (fn [body pivot] (.add (.getPhysicsLocation body)
-                                   (.mult (.getPhysicsRotation body) ^Vector3f pivot)))]
-    (.distance (end (.getBodyA joint) (.getPivotA joint))
-               (end (.getBodyB joint) (.getPivotB joint)))))
+  (.distance (body/pivot-in-world (.getBodyA joint) (.getPivotA joint))
+             (body/pivot-in-world (.getBodyB joint) (.getPivotB joint))))
 
 (defn- all-joints [creature]
   (distinct (mapcat #(.getJoints ^RigidBodyControl (.getControl ^Geometry % RigidBodyControl))

@@ -51,9 +51,7 @@
 (defn- gap
   "How far apart a seam's two sides are now."
   [{:keys [a b pivot-a pivot-b]}]
-  (let [end (fn [^RigidBodyControl c ^Vector3f p]
-              (.add (.getPhysicsLocation c) (.mult (.getPhysicsRotation c) p)))]
-    (.distance (end a pivot-a) (end b pivot-b))))
+  (.distance (body/pivot-in-world a pivot-a) (body/pivot-in-world b pivot-b)))
 
 (defn- fire-at-palm!
   "Stand low beside the palm, aim at it and press space."
