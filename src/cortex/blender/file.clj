@@ -472,6 +472,20 @@
   (when-let [[b off] (block-of bf ptr)]
     [off (- (+ (long (:offset b)) (long (:len b))) (long off)) (:group b)]))
 
+(defn deref-array
+  "Views of the first `n` structs of type `type-name` in the array
+  pointer `ptr` points at: no more than the pointed-at block holds,
+  whatever `n` (a count read from the file) says. Empty for NULL,
+  dangling pointers and unknown types."
+  [bf ptr type-name n]
+  (let [lay (struct-layout bf type-name)]
+    (if-let [[off avail g] (and lay (pos? (long n)) (pointed-bytes bf ptr))]
+      (let [size (long (:size lay))
+            end (+ (long off) (long avail))]
+        (vec (keep #(ref-at bf lay (+ (long off) (* (long %) size)) end g)
+                   (range (min (long n) (quot (long avail) (max 1 size)))))))
+      [])))
+
 (defn- read-prim
   "Read one value of SDNA primitive type `t` (size `size`) at `off`."
   [^ByteBuffer buf t ^long size ^long off]

@@ -62,15 +62,9 @@
 (defn- cd-layers
   "The layers of CustomData `cd`: maps of :type, :name and :data."
   [bf cd]
-  (let [n (long (or (f/fget cd "totlayer") 0))
-        lay (f/struct-layout bf "CustomDataLayer")]
-    (when-let [[off avail g] (and lay (pos? n) (f/pointed-bytes bf (f/fget cd "layers")))]
-      (let [size (long (:size lay))
-            n (min n (quot (long avail) (max 1 size)))]
-        (vec (for [i (range n)
-                   :let [r (f/ref-at bf lay (+ (long off) (* i size)) (+ (long off) (long avail)) g)]
-                   :when r]
-               {:type (f/fget r "type") :name (f/fget r "name") :data (f/fget r "data")}))))))
+  (vec (for [r (f/deref-array bf (f/fget cd "layers") "CustomDataLayer"
+                              (or (f/fget cd "totlayer") 0))]
+         {:type (f/fget r "type") :name (f/fget r "name") :data (f/fget r "data")})))
 
 (defn- storage-attributes
   "The attributes of Blender 5.0's `Mesh.attribute_storage`, as maps of
@@ -78,21 +72,15 @@
   :data (the pointer to the values)."
   [bf mesh]
   (when-let [st (f/fget mesh "attribute_storage")]
-    (let [n (long (or (f/fget st "dna_attributes_num") 0))
-          lay (f/struct-layout bf "Attribute")]
-      (when-let [[off avail g] (and lay (pos? n) (f/pointed-bytes bf (f/fget st "dna_attributes")))]
-        (let [size (long (:size lay))
-              n (min n (quot (long avail) (max 1 size)))]
-          (vec (for [i (range n)
-                     :let [r (f/ref-at bf lay (+ (long off) (* i size)) (+ (long off) (long avail)) g)]
-                     :when r
-                     :let [single? (= 1 (f/fget r "storage_type"))
-                           holder (f/deref-ptr bf (f/fget r "data")
-                                               (if single? "AttributeSingle" "AttributeArray"))
-                           name (when-let [[o a] (f/pointed-bytes bf (f/fget r "name"))]
-                                  (f/c-string bf o (min 1024 (long a))))]]
-                 {:name name :domain (f/fget r "domain") :single? single?
-                  :data (f/fget holder "data")})))))))
+    (vec (for [r (f/deref-array bf (f/fget st "dna_attributes") "Attribute"
+                                (or (f/fget st "dna_attributes_num") 0))
+               :let [single? (= 1 (f/fget r "storage_type"))
+                     holder (f/deref-ptr bf (f/fget r "data")
+                                         (if single? "AttributeSingle" "AttributeArray"))
+                     name (when-let [[o a] (f/pointed-bytes bf (f/fget r "name"))]
+                            (f/c-string bf o (min 1024 (long a))))]]
+           {:name name :domain (f/fget r "domain") :single? single?
+            :data (f/fget holder "data")}))))
 
 (defn- named-data
   "The data pointer of the generic attribute `aname` on CustomData
