@@ -37,7 +37,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import dump  # noqa: E402
 from make_fixtures import (box_mesh, empty_file, material, mesh_from,  # noqa: E402
-                           new_object, update)
+                           new_object, save, update)
 
 GAP = 0.03            # space between two jointed segments
 HALF_GAP = GAP / 2.0  # joint empty sits in the middle of the gap
@@ -94,16 +94,6 @@ def segment(name, mesh, location, mass, mat=None):
     obj = new_object(name, mesh, location=location)
     obj["mass"] = float(mass)
     return obj
-
-
-def save(path):
-    update()
-    bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(path), compress=False,
-                                check_existing=False)
-    bpy.ops.wm.open_mainfile(filepath=os.path.abspath(path), load_ui=False)
-    json_path = os.path.splitext(path)[0] + ".json"
-    dump.dump(json_path)
-    print("wrote", path, "and", json_path)
 
 
 # ------------------------------------------------------------------ worm
