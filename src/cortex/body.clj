@@ -212,7 +212,8 @@
   [index ^Spatial joint]
   (let [center (.getWorldTranslation joint)
         limit (* 2 (max 0.01 (reach index center)))
-        found (fn [r] (touching index center r))
+        ;; each cube size is probed once, however often the search asks
+        found (memoize (fn [r] (vec (touching index center r))))
         [lo hi] (loop [r 0.01]
                   (cond (>= (count (found r)) 2) [(/ r 2) r]
                         (> r limit)
