@@ -33,5 +33,6 @@
             "repl" ["trampoline" "run" "-m" "cortex.repl"]
             ;; lein bench [--quick]: build and simulation timings; see org/bench.org
             "bench" ["run" "-m" "cortex.bench"]}
-  :profiles {:dev {:dependencies [[org.jmonkeyengine/jme3-blender "3.2.4-stable"]
+  :profiles {:dev {:source-paths ["dev"]
+                   :dependencies [[org.jmonkeyengine/jme3-blender "3.2.4-stable"]
                                   [org.clojure/test.check "1.1.1"]]}})

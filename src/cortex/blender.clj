@@ -4,12 +4,13 @@
   (:require [clojure.java.io :as io]
             [cortex.blender.file :as file]
             [cortex.blender.scene :as scene]
-            [cortex.blender.jme :as jme])
-  (:import [com.jme3.asset AssetManager AssetInfo DesktopAssetManager ModelKey]
-           [com.jme3.asset.plugins FileLocator]
-           [com.jme3.scene Spatial Geometry Node]
+            [cortex.blender.jme :as jme]
+            [cortex.util :as util])
+  (:import [com.jme3.asset AssetManager AssetInfo ModelKey]
            [java.io File InputStream]
            [java.nio.file Files]))
+
+(set! *warn-on-reflection* true)
 
 (defn- read-all
   "All bytes of `source`: a File, a path, an InputStream or bytes."
@@ -77,29 +78,12 @@
   (.registerLoader am cortex.BlendLoader (into-array String ["blend"]))
   am)
 
-(defn asset-manager
-  "A desktop AssetManager that finds assets on the classpath and under
-  the folder \"assets\", and reads .blend files with cortex's reader.
-  Materials are created without a GPU."
-  ^AssetManager []
-  (doto (DesktopAssetManager. true)
-    (.registerLocator "assets" FileLocator)
-    (register-loader!)))
-
-(defonce ^:private shared-manager (delay (asset-manager)))
-
-(defn default-asset-manager
-  "The asset manager `load-blender-model` uses when given none, made on
-  first use."
-  ^AssetManager []
-  @shared-manager)
-
 (defn load-blender-model
   "Load a Blender model as a jME Node. `model` is an asset name (such as
   \"Models/test-creature/worm.blend\", found on the classpath or under
   assets/) or the path of a .blend file. Errors are ex-info naming the
   file."
-  ([model] (load-blender-model (default-asset-manager) model))
+  ([model] (load-blender-model (util/asset-manager) model))
   ([^AssetManager am model]
    (let [f (io/file (str model))]
      (if (.isFile f)
@@ -109,11 +93,3 @@
               (throw (ex-info (str model ": no such file, nor asset under assets/ or on the classpath")
                               {:file (str model)} e))))))))
 
-(defn meta-data
-  "The custom property `key` of `spatial` (a Blender object's Node), or
-  when a Geometry has none, that of the object Node holding it."
-  [^Spatial spatial key]
-  (let [v (.getUserData spatial (str key))]
-    (if (and (nil? v) (instance? Geometry spatial) (.getParent spatial))
-      (.getUserData (.getParent spatial) (str key))
-      v)))

@@ -15,6 +15,8 @@
            (com.jme3.math Matrix3f Vector3f)
            (com.jme3.scene Geometry Mesh Node Spatial VertexBuffer$Type)))
 
+(set! *warn-on-reflection* true)
+
 (def max-hull-points
   "The most points a segment's hull keeps. Bullet advises convex hulls of
   no more than about a hundred vertices: contacts on bigger hulls cost

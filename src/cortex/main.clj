@@ -7,18 +7,21 @@
             [clojure.tools.cli :as cli]
             [cortex.body :as body]
             [cortex.render :as render]
-            [cortex.test.body :as tb]
+            [cortex.demo :as demo]
             [cortex.util :as util]
             [cortex.world :as world])
-  (:import (com.jme3.math Vector3f)
+  (:import (com.jme3.app SimpleApplication)
+           (com.jme3.math Vector3f)
            (java.nio.file CopyOption Files StandardCopyOption)))
+
+(set! *warn-on-reflection* true)
 
 (def creatures
   "The creatures lein run can show, by name: functions that load them."
-  {"worm" tb/worm
-   "hand" tb/hand})
+  {"worm" demo/worm
+   "hand" demo/hand})
 
-(defn creature
+(defn named-creature
   "The creature called `creature-name` (see `creatures`), loaded from
   its .blend file; an ex-info naming the choices for any other name."
   [creature-name]
@@ -31,7 +34,7 @@
 (defn- frame-the-fall!
   "Put the camera back from the creature's starting place and level
   with its fall, aimed at the middle of the drop to the floor."
-  [world]
+  [^SimpleApplication world]
   (doto (.getCamera world)
     (.setLocation (Vector3f. -3 0 16))
     (.lookAt (Vector3f. 0 -4.5 0) Vector3f/UNIT_Y))
@@ -43,13 +46,13 @@
   cannon ball, G/U switch gravity on/off, H shows the physics, and the
   fly-by camera's keys. Simulated time is shown on screen."
   [creature]
-  (world/world (util/nodify [(body/body! creature) (tb/floor)])
-               (merge world/standard-debug-controls tb/gravity-control tb/debug-control)
+  (world/world (util/nodify [(body/body! creature) (demo/floor)])
+               (merge world/standard-debug-controls demo/gravity-control demo/debug-control)
                (fn [w]
-                 (tb/setup w)
+                 (demo/setup w)
                  (frame-the-fall! w)
                  (world/speed-up w)
-                 (util/display-dilated-time w (.getTimer w)))
+                 (util/display-dilated-time w (.getTimer ^SimpleApplication w)))
                world/no-op))
 
 (def frames-per-second
@@ -106,7 +109,7 @@
       :else
       {:action (if (and display? (not headless)) :window :offscreen)
        :creature creature
-       :frames (max 1 (Math/round (* seconds frames-per-second)))
+       :frames (max 1 (Math/round (* (double seconds) frames-per-second)))
        :out (or out (str "out/" creature))
        :record? (or (boolean headless) (not display?) (some? out))
        :fallback? (not window)
@@ -118,7 +121,7 @@
   [dir name]
   (when-let [last-frame (last (render/frames-in dir))]
     (let [still (io/file dir (str name ".png"))]
-      (Files/copy (.toPath last-frame) (.toPath still)
+      (Files/copy (.toPath ^java.io.File last-frame) (.toPath still)
                   ^"[Ljava.nio.file.CopyOption;"
                   (into-array CopyOption [StandardCopyOption/REPLACE_EXISTING]))
       (str still))))
@@ -139,7 +142,7 @@
   "Draw the demo offscreen for the planned number of frames, recording
   every one in the planned folder, then make the still and videos."
   [{:keys [creature frames out size]}]
-  (let [w (demo-world (cortex.main/creature creature))
+  (let [w (demo-world (named-creature creature))
         [width height] size
         start (System/nanoTime)]
     (println "no window: drawing" (format "%.1f" (/ frames (double frames-per-second)))
@@ -157,7 +160,7 @@
   display without OpenGL, say) and the plan allows it, draw offscreen
   instead."
   [{:keys [creature out size record? fallback?] :as plan}]
-  (let [w (demo-world (cortex.main/creature creature))]
+  (let [w (demo-world (named-creature creature))]
     (when record? (render/record! w out))
     (println "space: fire a ball | G/U: gravity on/off | H: show physics |"
              "W A S D Q Z, mouse: camera | Esc: quit")

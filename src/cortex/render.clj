@@ -22,6 +22,8 @@
            (java.nio.channels SocketChannel)
            (javax.imageio ImageIO)))
 
+(set! *warn-on-reflection* true)
+
 (defn parse-display
   "The parts of an X display name such as \":0\", \":1.0\", \"unix:2\"
   or \"host:10.0\", as {:host h :number n}, :host nil for the local
@@ -197,16 +199,19 @@
          view-port (atom nil)]
      (.attach (.getStateManager world)
               (proxy [AbstractAppState] []
-                (initialize [state-manager app]
-                  (proxy-super initialize state-manager app)
+                (initialize [^com.jme3.app.state.AppStateManager state-manager
+                             ^com.jme3.app.Application app]
+                  (let [^AbstractAppState this this]
+                    (proxy-super initialize state-manager app))
                   (when (instance? NullRenderer (.getRenderer world))
                     (throw (ex-info (str "cannot record a world that draws nothing"
                                          " (jME's null renderer): run it with"
                                          " cortex.render/run-offscreen! or in a window")
                                     {})))
-                  (.addProcessor (reset! view-port (last-view-port world)) grabber))
+                  (.addProcessor ^ViewPort (reset! view-port (last-view-port world)) grabber))
                 (cleanup []
-                  (proxy-super cleanup)
+                  (let [^AbstractAppState this this]
+                    (proxy-super cleanup))
                   (some-> ^ViewPort @view-port (.removeProcessor grabber))
                   (on-end))))
      world)))

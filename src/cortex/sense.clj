@@ -1,16 +1,19 @@
 (ns cortex.sense
   "What senses share: finding the marker nodes a creature's designer
   placed in Blender, and reading the data attached to them."
-  (:require [cortex.blender :as blender])
-  (:import (com.jme3.scene Node)))
+  (:import (com.jme3.scene Geometry Node Spatial)))
 
-(def ^{:doc "The custom property `key` that Blender gave the object
-  `spatial` stands for, or nil; asked of a mesh's Geometry, it answers
-  for the object holding it. (The loader owns the convention; this is
-  cortex.blender/meta-data.)"
-       :arglists '([spatial key])}
-  meta-data
-  blender/meta-data)
+(set! *warn-on-reflection* true)
+
+(defn meta-data
+  "The custom property `key` that Blender gave the object `spatial`
+  stands for, or nil; asked of a mesh's Geometry that has none, it
+  answers for the object Node holding it."
+  [^Spatial spatial key]
+  (let [v (.getUserData spatial (str key))]
+    (if (and (nil? v) (instance? Geometry spatial) (.getParent spatial))
+      (.getUserData (.getParent spatial) (str key))
+      v)))
 
 (defn sense-nodes
   "A function of a creature that returns the children of the creature's

@@ -2,10 +2,10 @@
   "Small helpers the rest of cortex leans on: walking scene graphs,
   making simple physical shapes, lights, coordinate changes between
   Blender and jMonkeyEngine, and printing from jME's thread."
-  (:require [cortex.blender :as blender])
   (:import (com.jme3.app SimpleApplication)
            (com.jme3.app.state AbstractAppState)
            (com.jme3.asset AssetManager DesktopAssetManager)
+           (com.jme3.asset.plugins FileLocator)
            (com.jme3.bullet.collision.shapes BoxCollisionShape
                                              SphereCollisionShape)
            (com.jme3.bullet.control RigidBodyControl)
@@ -14,8 +14,9 @@
            (com.jme3.material Material)
            (com.jme3.math ColorRGBA Quaternion Vector3f)
            (com.jme3.scene Geometry Node Spatial)
-           (com.jme3.scene.shape Box Sphere)
-           (com.jme3.system JmeSystem)))
+           (com.jme3.scene.shape Box Sphere)))
+
+(set! *warn-on-reflection* true)
 
 (defn node-seq
   "Every spatial under (and including) `root`, depth first."
@@ -64,30 +65,35 @@
     (apply println args)
     (flush)))
 
+(defn- new-asset-manager
+  ^AssetManager []
+  (doto (DesktopAssetManager. true)
+    (.registerLocator "assets" FileLocator)
+    (.registerLoader (Class/forName "cortex.BlendLoader")
+                     ^"[Ljava.lang.String;" (into-array String ["blend"]))))
+
+(def ^:private shared-assets (delay (new-asset-manager)))
+
 (defn asset-manager
-  "A new desktop AssetManager that finds jME's own assets and cortex's
-  assets/ folder on the classpath."
-  ^AssetManager []
-  (JmeSystem/newAssetManager
-   (.getResource (.getContextClassLoader (Thread/currentThread))
-                 "com/jme3/asset/Desktop.cfg")))
+  "The AssetManager cortex uses: it finds jME's own assets, anything on
+  the classpath and the folder assets/, and reads .blend files with
+  cortex's reader (loaded on the first .blend it meets). With no
+  argument, the one manager shared by everything, made on first use;
+  `(asset-manager {:new true})` makes a fresh one, for a caller that
+  registers locators of its own."
+  (^AssetManager [] @shared-assets)
+  (^AssetManager [{:keys [new]}]
+   (if new (new-asset-manager) @shared-assets)))
 
-(def ^{:doc "Load a .blend file as a jME Node: an asset name such as
+(defn load-blender-model
+  "Load a .blend file as a jME Node: `model` is an asset name such as
   \"Models/test-creature/worm.blend\" (under assets/ or on the
-  classpath) or a file's path. See cortex.blender/load-blender-model."
-       :arglists '([model] [asset-manager model])}
-  load-blender-model
-  blender/load-blender-model)
-
-(def ^:private shared-assets
-  "One AssetManager for making materials outside any running world."
-  (delay (asset-manager)))
-
-(defn shared-asset-manager
-  "An AssetManager shared by everything cortex builds before a world
-  exists; made on first use."
-  ^AssetManager []
-  @shared-assets)
+  classpath) or a file's path; `am` an AssetManager (the shared one when
+  not given). Errors are ex-info naming the file. The reader,
+  cortex.blender, is loaded on the first call."
+  ([model] ((requiring-resolve 'cortex.blender/load-blender-model) model))
+  ([^AssetManager am model]
+   ((requiring-resolve 'cortex.blender/load-blender-model) am model)))
 
 (def ^:private shape-defaults
   {:name "shape"
@@ -106,7 +112,7 @@
   (let [{:keys [name color material position rotation mass friction physical?]}
         (merge shape-defaults options)
         geom (Geometry. ^String name mesh)]
-    (.setMaterial geom (doto (Material. (shared-asset-manager) ^String material)
+    (.setMaterial geom (doto (Material. (asset-manager) ^String material)
                          (.setColor "Color" ^ColorRGBA color)))
     (.setLocalTranslation geom ^Vector3f position)
     (.setLocalRotation geom ^Quaternion rotation)

@@ -18,6 +18,8 @@
            (com.jme3.system AppSettings JmeContext$Type)
            (cortex RatchetTimer)))
 
+(set! *warn-on-reflection* true)
+
 (defn no-op
   "Does nothing, whatever it is given: the update function of a world
   that needs none."

@@ -3,9 +3,12 @@
             [clojure.test :refer [deftest is testing]]
             [cortex.bench :as bench]
             [cortex.bench.creatures :as creatures]
+            [cortex.blender-bench :as blender-bench]
             [cortex.body :as body])
   (:import (com.jme3.bullet.control RigidBodyControl)
            (com.jme3.scene Geometry)))
+
+(set! *warn-on-reflection* true)
 
 (defn- boxes-apart?
   "Whether two segment descriptions' boxes are at least `d` apart along

@@ -7,7 +7,9 @@
             [cortex.blender :as blender]
             [cortex.blender.file :as file]
             [cortex.blender.math :as m]
-            [cortex.blender.mesh :as mesh])
+            [cortex.blender.mesh :as mesh]
+            [cortex.sense :as sense]
+            [cortex.util :as util])
   (:import [com.jme3.scene Spatial Node Geometry]
            [com.jme3.asset DesktopAssetManager]
            [com.jme3.asset.plugins FileLocator]
@@ -19,6 +21,8 @@
            [java.util Random]
            [java.util.logging Logger Level]
            [java.util.zip GZIPOutputStream]))
+
+(set! *warn-on-reflection* true)
 
 (def corpus-dir
   "The shared corpus of old .blend files, beside the project."
@@ -112,7 +116,7 @@
    (fn []
      (let [am (doto (DesktopAssetManager. true)
                 (.registerLocator "/" FileLocator)
-                (.registerLoader BlenderLoader (into-array String ["blend"])))]
+                (.registerLoader BlenderLoader ^"[Ljava.lang.String;" (into-array String ["blend"])))]
        (doseq [^File f (corpus-files)
                :when (not (jme3-blender-skips (.getName f)))]
          (testing (.getName f)
@@ -304,7 +308,7 @@
                 (when (< (get tm "vertices") 2000)
                   (check-vertices n (get t "matrix_world") (:mesh o))))
               (doseq [[k v] (get t "properties")]
-                (is (same-property? (java->clj (blender/meta-data n k)) v) k)))))))))
+                (is (same-property? (java->clj (sense/meta-data n k)) v) k)))))))))
 
 (deftest computed-worlds-match-stored
   (doseq [^File f (concat (corpus-files)
@@ -363,20 +367,20 @@
         seg (.getChild ^Node worm "worm-1")
         geom (first (filter #(instance? Geometry %) (node-seq seg)))]
     (is (some? seg))
-    (is (= 1.0 (blender/meta-data seg "mass")))
-    (is (= 1.0 (blender/meta-data geom "mass")))
-    (is (= "MESH" (blender/meta-data geom "blender-type")))
-    (is (string? (blender/meta-data (.getChild ^Node worm "worm-joint") "joint")))
-    (is (nil? (blender/meta-data geom "no-such-property")))))
+    (is (= 1.0 (sense/meta-data seg "mass")))
+    (is (= 1.0 (sense/meta-data geom "mass")))
+    (is (= "MESH" (sense/meta-data geom "blender-type")))
+    (is (string? (sense/meta-data (.getChild ^Node worm "worm-joint") "joint")))
+    (is (nil? (sense/meta-data geom "no-such-property")))))
 
 (deftest asset-manager-loads-blend
-  (let [am (blender/asset-manager)
+  (let [am (util/asset-manager {:new true})
         ^Node worm (.loadModel am "Models/test-creature/worm.blend")]
     (is (some? (.getChild worm "worm-2")))
     (testing "a second load comes from jME's cache as a clone, user data intact"
       (let [^Node again (.loadModel am "Models/test-creature/worm.blend")]
         (is (not (identical? worm again)))
-        (is (= 1.0 (blender/meta-data (.getChild again "worm-2") "mass")))))))
+        (is (= 1.0 (sense/meta-data (.getChild again "worm-2") "mass")))))))
 
 (deftest concave-faces-triangulate
   (let [l-shape [[0 0] [2 0] [2 1] [1 1] [1 2] [0 2]]
@@ -482,7 +486,7 @@
 
 (deftest errors-survive-jme-asset-manager
   (write-tmp "broken.blend" (java.util.Arrays/copyOf (slurp-bytes good-file) 5000))
-  (let [am (doto (blender/asset-manager) (.registerLocator (str *tmp*) FileLocator))
+  (let [am (doto (util/asset-manager {:new true}) (.registerLocator (str *tmp*) FileLocator))
         e (try (.loadModel am "broken.blend") nil (catch ExceptionInfo e e))]
     (is (instance? ExceptionInfo e))
     (is (re-find #"broken\.blend" (str (some-> e .getMessage))))))
@@ -591,7 +595,7 @@
   an ex-info naming the file?"
   [name ^bytes bs]
   (let [f (future
-            (try (blender/load-bytes (blender/default-asset-manager) name bs) :ok
+            (try (blender/load-bytes (util/asset-manager) name bs) :ok
                  (catch ExceptionInfo e (if (= name (:file (ex-data e))) :ex-info [:unnamed e]))
                  (catch Throwable e [:escaped e])))
         r (deref f 10000 :timeout)]

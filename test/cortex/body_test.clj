@@ -10,6 +10,8 @@
            (com.jme3.scene Geometry Node VertexBuffer$Type)
            (com.jme3.scene.shape Box Sphere)))
 
+(set! *warn-on-reflection* true)
+
 (defn- segment
   [name ^Vector3f position & {:keys [mass half] :or {half [1 0.25 0.25]}}]
   (let [[x y z] half

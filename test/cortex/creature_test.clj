@@ -2,6 +2,7 @@
   (:require [clojure.java.io :as io]
             [clojure.test :refer [deftest is testing]]
             [cortex.body :as body]
+            [cortex.demo :as demo]
             [cortex.test.body :as tb]
             [cortex.util :as util]
             [cortex.world :as world])
@@ -9,6 +10,8 @@
            (com.jme3.bullet.control RigidBodyControl)
            (com.jme3.math Vector3f)
            (com.jme3.scene Geometry Node VertexBuffer$Type)))
+
+(set! *warn-on-reflection* true)
 
 (defn- creature-in
   "The creature of a test world: the node loaded from a .blend file."
@@ -74,7 +77,7 @@
     (every-frame! w (fn [w frame]
                       (when (= 1 frame)
                         (reset! tracked (seams (creature-in w)))
-                        ((get tb/gravity-control "key-g") w true))
+                        ((get demo/gravity-control "key-g") w true))
                       (when (= 120 frame) (fire-at-palm! w (creature-in w)))
                       (let [g (apply max (map gap @tracked))]
                         (cond (< frame 60) (swap! worst update :early max g)

@@ -8,6 +8,8 @@
            (com.jme3.renderer Camera)
            (java.awt.image BufferedImage)))
 
+(set! *warn-on-reflection* true)
+
 (deftest reading-the-command-line
   (testing "defaults: a window when there is a display, offscreen when not"
     (is (= {:action :window :creature "worm" :frames 240 :out "out/worm"
@@ -41,7 +43,7 @@
 
 (deftest unknown-creatures
   (is (thrown-with-msg? clojure.lang.ExceptionInfo #"no creature called \"cat\""
-                        (main/creature "cat"))))
+                        (main/named-creature "cat"))))
 
 (defn- rgb [^BufferedImage image x y]
   (let [p (.getRGB image (int x) (int y))]
@@ -78,7 +80,7 @@
     [(Math/round (.x s)) (- (.getHeight cam) 1 (Math/round (.y s)))]))
 
 (deftest the-worm-is-seen-falling
-  (let [worm (main/creature "worm")
+  (let [worm (main/named-creature "worm")
         w (main/demo-world worm)
         keep #{1 30 80}
         seen (atom {})

@@ -11,6 +11,8 @@
            (java.nio.file.attribute FileAttribute)
            (javax.imageio ImageIO)))
 
+(set! *warn-on-reflection* true)
+
 (defn- temp-dir []
   (str (Files/createTempDirectory "cortex-render" (into-array FileAttribute []))))
 

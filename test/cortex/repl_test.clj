@@ -3,6 +3,8 @@
             [cortex.repl :as repl]
             [nrepl.core :as nrepl]))
 
+(set! *warn-on-reflection* true)
+
 (deftest editors-can-reach-the-server
   (let [server (binding [*out* (java.io.StringWriter.)] (repl/start-server!))]
     (try

@@ -4,6 +4,8 @@
             [cortex.util :as util])
   (:import (com.jme3.scene Node)))
 
+(set! *warn-on-reflection* true)
+
 (deftest finding-marker-nodes
   (let [markers (util/nodify "joints" [(Node. "j1") (Node. "j2")])
         creature (util/nodify "creature" [(util/nodify "body" [markers])])

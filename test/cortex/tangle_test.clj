@@ -3,6 +3,8 @@
             [clojure.string :as str]
             [cortex.tangle :as tangle]))
 
+(set! *warn-on-reflection* true)
+
 (deftest header-arguments
   (is (= {:tangle "../src/a.clj" :mkdirp "yes"}
          (tangle/header-args " :tangle ../src/a.clj :mkdirp yes")))
@@ -36,7 +38,7 @@
     (doseq [{:keys [file reason]} (tangle/drift "org")]
       (is (nil? reason) (str file " " reason ": run lein tangle"))))
   (testing "no source file lives outside the book"
-    (doseq [f (tangle/untangled "org" ["src" "test" "java"] [".clj" ".java"])]
+    (doseq [f (tangle/untangled "org" ["src" "test" "java" "dev"] [".clj" ".java"])]
       (is (nil? f) (str f " is not tangled from any org/ chapter")))))
 
 (deftest every-chapter-is-in-the-index

@@ -5,6 +5,8 @@
            (com.jme3.math FastMath Quaternion Vector3f)
            (com.jme3.scene Geometry Node)))
 
+(set! *warn-on-reflection* true)
+
 (deftest walking-the-scene-graph
   (let [a (util/box 1 1 1 :name "a" :physical? false)
         b (util/sphere 1 :name "b" :physical? false)

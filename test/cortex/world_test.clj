@@ -6,6 +6,8 @@
            (com.jme3.math Quaternion Vector3f)
            (cortex RatchetTimer)))
 
+(set! *warn-on-reflection* true)
+
 (defn- earth-gravity [w] (world/set-gravity w (Vector3f. 0 -9.81 0)))
 
 (defn- floor [] (util/box 10 1 10 :position (Vector3f. 0 -1 0) :mass 0 :name "floor"))

@@ -243,7 +243,7 @@
   matrix in Y-up. Mesh objects get Geometry children; custom
   properties become user data, plus \"blender-type\" (MESH, EMPTY,
   LIGHT, CAMERA, ...) unless a property of that name exists, plus the
-  object's Blender physics (see cortex.blender.physics/user-data).
+  object's Blender physics (see cortex.blender.rigid-body/user-data).
   Materials are made with asset manager `am` (none when nil)."
   ^Node [am root-name sd]
   (let [root (Node. (str root-name))

@@ -3,6 +3,8 @@
   a 3x3 or 4x4 matrix is a vector of rows (row-major, column vectors
   multiply on the right, as in Blender's own formulas).")
 
+(set! *warn-on-reflection* true)
+
 (defn identity-matrix
   "The n by n identity."
   [n]

@@ -5,7 +5,9 @@
   (:require [cortex.blender.file :as f]
             [cortex.blender.math :as m]
             [cortex.blender.mesh :as mesh]
-            [cortex.blender.physics :as physics]))
+            [cortex.blender.rigid-body :as physics]))
+
+(set! *warn-on-reflection* true)
 
 (def object-types
   "Blender's object type codes, named as Blender's Python API names

@@ -3,55 +3,19 @@
   hologram, the hand solid but in pieces, the hand jointed, and the worm
   that later chapters give senses to. Each is a function returning an
   unstarted world: (.start (test-worm)) opens a window,
-  (world/run-world! (test-worm) 300) runs it headless."
+  (world/run-world! (test-worm) 300) runs it headless.
+
+  Entry points: `test-hand-1`, `test-hand-2`, `test-hand-3`,
+  `test-worm`."
   (:require [cortex.body :as body]
+            [cortex.demo :as demo :refer [hand worm floor setup]]
             [cortex.render :as render]
             [cortex.util :as util]
             [cortex.world :as world])
   (:import (com.jme3.app SimpleApplication)
-           (com.jme3.math ColorRGBA Vector3f)
-           (cortex RatchetTimer)))
+           (com.jme3.math Vector3f)))
 
-(def hand-path "Models/test-creature/hand.blend")
-(def worm-path "Models/test-creature/worm.blend")
-
-(defn hand
-  "The hand, as Blender describes it: a palm and five fingers."
-  []
-  (util/load-blender-model hand-path))
-
-(defn worm
-  "The worm: two segments and one joint."
-  []
-  (util/load-blender-model worm-path))
-
-(def earth-gravity (Vector3f. 0 -9.81 0))
-
-(def gravity-control
-  "G turns gravity on, U turns it off."
-  {"key-g" (fn [w pressed?] (when pressed? (world/set-gravity w earth-gravity)))
-   "key-u" (fn [w pressed?] (when pressed? (world/set-gravity w Vector3f/ZERO)))})
-
-(def debug-control
-  "H shows the physics: collision shapes and joints."
-  {"key-h" (fn [w pressed?] (when pressed? (world/enable-debug w)))})
-
-(defn floor
-  "A grey static slab whose top is at y = -7."
-  []
-  (util/box 10 3 10 :position (Vector3f. 0 -10 0) :color ColorRGBA/Gray :mass 0
-            :name "floor"))
-
-(defn setup
-  "Point the camera at the creature from above and to the side, light
-  the scene and fix the step at 1/60 s. Returns the world."
-  [^SimpleApplication world]
-  (doto (.getCamera world)
-    (.setLocation (Vector3f. -6.5 7 7))
-    (.lookAt (Vector3f. 0 -1 -1) Vector3f/UNIT_Y))
-  (util/light-up-everything world)
-  (.setTimer world (RatchetTimer. 60))
-  world)
+(set! *warn-on-reflection* true)
 
 (defn- record-if-asked!
   "Record world `w` into folder `record?` when it names one, into
@@ -78,7 +42,7 @@
   ([] (test-hand-2 false))
   ([record?]
    (world/world (util/nodify [(body/physical! (hand)) (floor)])
-                (merge world/standard-debug-controls gravity-control)
+                (merge world/standard-debug-controls demo/gravity-control)
                 #(setup (world/set-gravity (record-if-asked! % record? "test-hand-2")
                                            Vector3f/ZERO))
                 world/no-op)))
@@ -91,7 +55,7 @@
   ([] (test-hand-3 false))
   ([record?]
    (world/world (util/nodify [(body/body! (hand)) (floor)])
-                (merge world/standard-debug-controls debug-control gravity-control)
+                (merge world/standard-debug-controls demo/debug-control demo/gravity-control)
                 #(setup (world/set-gravity (record-if-asked! % record? "test-hand-3")
                                            Vector3f/ZERO))
                 world/no-op)))
@@ -103,7 +67,7 @@
   ([] (test-worm false))
   ([record?]
    (world/world (util/nodify [(body/body! (worm)) (floor)])
-                (merge world/standard-debug-controls debug-control)
+                (merge world/standard-debug-controls demo/debug-control)
                 (fn [w]
                   (record-if-asked! w record? "test-worm")
                   (setup w)

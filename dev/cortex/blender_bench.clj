@@ -2,12 +2,15 @@
   "Median load times: cortex's .blend reader against jme3-blender.
   Run with `lein run -m cortex.blender-bench [runs]`."
   (:require [clojure.java.io :as io]
-            [cortex.blender :as blender])
+            [cortex.blender :as blender]
+            [cortex.util :as util])
   (:import [com.jme3.asset DesktopAssetManager]
            [com.jme3.asset.plugins FileLocator]
            [com.jme3.scene.plugins.blender BlenderLoader]
            [java.io File]
            [java.util.logging Logger Level]))
+
+(set! *warn-on-reflection* true)
 
 (defn- time-ms
   "Wall time of one call of `f` in milliseconds, or nil when it throws."
@@ -44,10 +47,10 @@
   [& [runs]]
   (.setLevel (Logger/getLogger "com.jme3") Level/OFF)
   (let [runs (if runs (Long/parseLong runs) 21)
-        am (blender/asset-manager)
+        am (util/asset-manager {:new true})
         theirs-am (doto (DesktopAssetManager. true)
                     (.registerLocator "/" FileLocator)
-                    (.registerLoader BlenderLoader (into-array String ["blend"])))
+                    (.registerLoader BlenderLoader ^"[Ljava.lang.String;" (into-array String ["blend"])))
         rows (for [^File f (bench-files)]
                (let [theirs-reads? (some? (time-ms #(.loadModel theirs-am (.getCanonicalPath f))))
                      [ours theirs] (medians runs

@@ -1,4 +1,4 @@
-(ns cortex.blender-physics
+(ns cortex.physics-tab
   "Build a creature from Blender's own rigid body physics: every object
   with a Rigid Body (Physics tab) becomes a jBullet rigid body, every
   Rigid Body Constraint a jBullet joint between the two objects it
@@ -8,9 +8,10 @@
             [cortex.blender :as blender]
             [cortex.blender.file]
             [cortex.blender.jme]
-            [cortex.blender.physics]
+            [cortex.blender.rigid-body]
             [cortex.blender.scene]
             [cortex.body :as body]
+            [cortex.sense :as sense]
             [cortex.util :as util])
   (:import (com.jme3.bullet.collision.shapes BoxCollisionShape CapsuleCollisionShape
                                              CollisionShape ConeCollisionShape
@@ -26,6 +27,8 @@
            (java.util List Map)
            (java.util.logging Logger)
            (jme3tools.optimize GeometryBatchFactory)))
+
+(set! *warn-on-reflection* true)
 
 (defn- clojure-key
   "A DNA field name as a keyword: \"lin_damping\" -> :lin-damping."
@@ -45,14 +48,14 @@
   :shape \"BOX\", :mass, :friction, :lin-damping, :kinematic ...), or
   nil when it has none."
   [^Spatial spatial]
-  (some-> (blender/meta-data spatial "blender-rigid-body") clojure-data))
+  (some-> (sense/meta-data spatial "blender-rigid-body") clojure-data))
 
 (defn rigid-body-constraint
   "The Blender rigid body constraint of object `spatial` as a map with
   keyword keys (:type \"HINGE\", :ob1, :ob2, :use-limit-ang-z,
   :limit-ang-z-lower ...), or nil when it has none."
   [^Spatial spatial]
-  (some-> (blender/meta-data spatial "blender-rigid-body-constraint") clojure-data))
+  (some-> (sense/meta-data spatial "blender-rigid-body-constraint") clojure-data))
 
 (defn- objects-with
   "The object Nodes of `creature` that carry user data `key`."
@@ -179,10 +182,12 @@
           "CONE" [(ConeCollisionShape. (float (tiny (:radius settings)))
                                        (float (tiny (:height settings))) (int up-axis))]
           "CONVEX_HULL" [(hull)]
-          "MESH" [(doto (if static?
-                          (MeshCollisionShape. (merged-mesh geoms))
-                          (GImpactCollisionShape. (merged-mesh geoms)))
-                    (.setScale scale))]
+          "MESH" [(let [^com.jme3.bullet.collision.shapes.CollisionShape
+                        s (if static?
+                            (MeshCollisionShape. (merged-mesh geoms))
+                            (GImpactCollisionShape. (merged-mesh geoms)))]
+                    (.setScale s ^Vector3f scale)
+                    s)]
           "COMPOUND" [(hull) [(str "rigid body " (pr-str name)
                                    ": COMPOUND shapes are built as a convex hull")]]
           (fail "rigid body" name (str "unknown collision shape " (pr-str (:shape rb))
@@ -219,7 +224,7 @@
                                    " (code " (:type-code rb) ")")
             {:type (:type rb)}))
     (if-let [c (.getControl spatial RigidBodyControl)]
-      {:object name :control c :spatial spatial :shape (:shape rb) :mass (.getMass c) :warnings []}
+      {:object name :control c :spatial spatial :shape (:shape rb) :mass (.getMass ^RigidBodyControl c) :warnings []}
       (let [mass (body-mass name rb)
             [shape warnings] (collision-shape node rb (zero? mass))
             c (RigidBodyControl. ^CollisionShape shape (float mass))]
@@ -406,7 +411,7 @@
   "The rotation `m` as a rotation vector (axis times angle, radians)."
   ^Vector3f [^Matrix3f m]
   (let [q (.fromRotationMatrix (com.jme3.math.Quaternion.) m)
-        q (if (neg? (.getW q)) (.negate q) q)
+        ^com.jme3.math.Quaternion q (if (neg? (.getW q)) (.negate q) q)
         axis (Vector3f.)
         angle (.toAngleAxis q axis)]
     (if (< (.length axis) 1e-9) (Vector3f.) (.mult (.normalize axis) angle))))
@@ -558,7 +563,7 @@
    (.updateGeometricState creature)
    (mapv #(constraint! % bodies) (constraint-objects creature))))
 
-(def ^:private ^Logger logger (Logger/getLogger "cortex.blender-physics"))
+(def ^:private ^Logger logger (Logger/getLogger "cortex.physics-tab"))
 
 (defn build!
   "Give `creature` (a Node loaded from Blender) the body Blender's Physics
@@ -594,7 +599,7 @@
 
 (defn gravity
   "Blender's gravity for rigid body world settings `world` (see
-  cortex.blender.physics/rigid-body-world): the scene's gravity times
+  cortex.blender.rigid-body/rigid-body-world): the scene's gravity times
   the world's effector weight, in jME's axes; zero when the scene's
   gravity is off."
   ^Vector3f [world]
@@ -607,7 +612,7 @@
 (defn with-physics-data!
   "Make sure the object Nodes of `root`, loaded from the .blend file
   `source` (a path, File or bytes), carry their Blender physics as user
-  data (see cortex.blender.physics/user-data), reading the file again
+  data (see cortex.blender.rigid-body/user-data), reading the file again
   for the objects whose Node lacks it: for scene graphs made by a loader
   that does not attach it. Objects are matched by name. Returns root."
   [^Node root source]
@@ -615,7 +620,7 @@
         sc (cortex.blender.scene/current-scene file)
         obs (if sc (cortex.blender.scene/scene-objects file sc) [])
         data (into {} (for [ob obs
-                            :let [d (cortex.blender.physics/user-data file ob)]
+                            :let [d (cortex.blender.rigid-body/user-data file ob)]
                             :when (seq d)]
                         [(cortex.blender.file/id-name ob) d]))]
     (doseq [^Spatial n (util/node-seq root)

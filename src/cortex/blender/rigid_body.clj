@@ -1,10 +1,12 @@
-(ns cortex.blender.physics
+(ns cortex.blender.rigid-body
   "Blender's own rigid body physics as data: the settings of the Physics
   tab's Rigid Body (RigidBodyOb), Rigid Body Constraint (RigidBodyCon)
   and the scene's Rigid Body World, read through the file's SDNA by
   field name. Codes and flags are those of Blender's
   DNA_rigidbody_types.h."
   (:require [cortex.blender.file :as f]))
+
+(set! *warn-on-reflection* true)
 
 (def body-types
   "eRigidBodyOb_Type: what part a rigid body plays."

@@ -7,7 +7,10 @@
   org-babel reads it. Blocks bound for one file are joined in the order
   they appear, with one blank line between them. Emacs is not needed."
   (:require [clojure.java.io :as io]
-            [clojure.string :as str]))
+            [clojure.string :as str])
+  (:import (java.io File)))
+
+(set! *warn-on-reflection* true)
 
 (defn header-args
   "Read org-babel header arguments, such as \":tangle ../src/a.clj
@@ -78,8 +81,8 @@
   "The org chapters in folder `dir`, in name order."
   [dir]
   (->> (.listFiles (io/file dir))
-       (filter #(str/ends-with? (.getName %) ".org"))
-       (sort-by #(.getName %))))
+       (filter #(str/ends-with? (.getName ^File %) ".org"))
+       (sort-by #(.getName ^File %))))
 
 (defn tangled
   "Map from each target file to the text the chapters in `dir` give it.
@@ -105,7 +108,7 @@
   `dir` say, as maps of :file and :reason."
   [dir]
   (for [[f text] (tangled dir)
-        :let [reason (cond (not (.exists f)) "missing"
+        :let [reason (cond (not (.exists ^File f)) "missing"
                            (not= text (slurp f)) "differs from org")]
         :when reason]
     {:file (str f) :reason reason}))
@@ -116,7 +119,7 @@
   [dir roots exts]
   (let [known (set (keys (tangled dir)))]
     (for [root roots
-          f (file-seq (io/file root))
+          ^File f (file-seq (io/file root))
           :when (and (.isFile f)
                      (some #(str/ends-with? (.getName f) %) exts)
                      (not (known (.getCanonicalFile f))))]
@@ -128,7 +131,7 @@
   [dir]
   (doall
    (for [[f text] (tangled dir)
-         :when (not (and (.exists f) (= text (slurp f))))]
+         :when (not (and (.exists ^File f) (= text (slurp f))))]
      (do (io/make-parents f)
          (spit f text)
          (str f)))))

@@ -1,8 +1,8 @@
-(ns cortex.blender-physics-test
+(ns cortex.physics-tab-test
   (:require [clojure.test :refer [deftest is testing]]
             [cortex.blender :as blender]
-            [cortex.blender-physics :as bp]
-            [cortex.blender.physics :as physics]
+            [cortex.physics-tab :as bp]
+            [cortex.blender.rigid-body :as physics]
             [cortex.blender.scene :as scene]
             [cortex.blender.file :as file]
             [cortex.body :as body]
@@ -14,6 +14,8 @@
            (com.jme3.math Quaternion Vector3f)
            (com.jme3.scene Node Spatial)
            (cortex FrameHingeJoint)))
+
+(set! *warn-on-reflection* true)
 
 (def versions ["b34" "b45" "b50"])
 
@@ -219,7 +221,7 @@
   handed), angle of what is left]."
   [^Quaternion from ^Quaternion to ^Vector3f axis]
   (let [q (.mult to (.inverse from))
-        q (if (neg? (.getW q)) (.negate q) q)
+        ^com.jme3.math.Quaternion q (if (neg? (.getW q)) (.negate q) q)
         v (Vector3f. (.getX q) (.getY q) (.getZ q))
         about (* 2 (Math/atan2 (.dot v axis) (.getW q)))
         rest (.subtract v (.mult axis (.dot v axis)))]

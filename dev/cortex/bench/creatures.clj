@@ -8,6 +8,8 @@
            (com.jme3.scene Geometry Node)
            (com.jme3.scene.shape Box)))
 
+(set! *warn-on-reflection* true)
+
 (def segment-length
   "How long a generated segment is, along the direction it grows in."
   1.0)
@@ -128,6 +130,6 @@
   ([description] (creature description 0))
   ([{:keys [name segments joints] :as description} height]
    (let [[cx _ cz] (centre description)]
-     (doto (util/nodify name (concat (map segment-node segments)
+     (doto ^Node (util/nodify name (concat (map segment-node segments)
                                      [(util/nodify "joints" (map joint-node joints))]))
        (.setLocalTranslation (float (- cx)) (float height) (float (- cz)))))))

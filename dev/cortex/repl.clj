@@ -7,6 +7,8 @@
             [clojure.main :as main]
             [nrepl.server :as nrepl]))
 
+(set! *warn-on-reflection* true)
+
 (def port-file
   "Where editors look for the port of a project's nREPL server."
   (io/file ".nrepl-port"))

@@ -7,6 +7,7 @@
             [clojure.pprint :as pprint]
             [clojure.string :as str]
             [cortex.bench.creatures :as creatures]
+            [cortex.blender-bench :as blender-bench]
             [cortex.body :as body]
             [cortex.util :as util]
             [cortex.world :as world])
@@ -17,6 +18,8 @@
            (com.jme3.math Vector3f)
            (com.jme3.scene Geometry Node)
            (java.lang.management ManagementFactory)))
+
+(set! *warn-on-reflection* true)
 
 (defn median
   "The middle value of `xs` (the mean of the two middle ones when there
@@ -405,12 +408,6 @@
              (merge {:creature (str kind "-" size)}
                     (measure-heap! (generated kind size 0) frames))))))
 
-(defn- try-resolve
-  "The value of the var named by the qualified symbol `sym`, loading its
-  namespace, or nil when there is no such namespace or var."
-  [sym]
-  (try (some-> (requiring-resolve sym) deref) (catch Throwable _ nil)))
-
 (defn- jme3-blender-loader
   "A function loading a .blend file (by path) with jme3-blender, from
   disk every time, or nil when jme3-blender is not on the classpath."
@@ -419,7 +416,7 @@
                          (catch ClassNotFoundException _ nil))]
     (let [am (doto (com.jme3.asset.DesktopAssetManager. true)
                (.registerLocator "/" com.jme3.asset.plugins.FileLocator)
-               (.registerLoader ^Class loader (into-array String ["blend"])))]
+               (.registerLoader ^Class loader ^"[Ljava.lang.String;" (into-array String ["blend"])))]
       (fn [^String path]
         (.clearCache am)
         (.loadModel am path)))))
@@ -427,28 +424,23 @@
 (defn run-blender-load!
   "Median load times of the Blender creatures with cortex's reader and
   with jme3-blender, measured with cortex.blender-bench's `medians` over
-  `runs` rounds, or one row saying why there are none."
+  `runs` rounds."
   [runs]
-  (let [medians (try-resolve 'cortex.blender-bench/medians)
-        asset-manager (try-resolve 'cortex.blender/asset-manager)
-        load (try-resolve 'cortex.blender/load-blender-model)]
-    (if-not (and medians asset-manager load)
-      [{:skipped (str "PENDING: the reader's benchmark (cortex.blender-bench/medians) "
-                      "or cortex.blender/load-blender-model is not there")}]
-      (let [quiet (java.util.logging.Logger/getLogger "com.jme3")
-            level (.getLevel quiet)
-            am (asset-manager)
-            theirs (jme3-blender-loader)]
-        (progress "blender load times")
-        (.setLevel quiet java.util.logging.Level/OFF)
-        (try
-          (vec (for [[name asset] (sort blender-creatures)
-                     :let [path (.getCanonicalPath (io/file "assets" asset))
-                           [ours jme] (medians runs (cond-> [#(load am path)]
-                                                      theirs (conj #(theirs path))))]]
-                 {:creature name :cortex-ms ours :jme3-blender-ms jme
-                  :speed-up (when (and ours jme) (/ jme ours))}))
-          (finally (.setLevel quiet level)))))))
+  (let [quiet (java.util.logging.Logger/getLogger "com.jme3")
+        level (.getLevel quiet)
+        am (util/asset-manager {:new true})
+        theirs (jme3-blender-loader)]
+    (progress "blender load times")
+    (.setLevel quiet java.util.logging.Level/OFF)
+    (try
+      (vec (for [[name asset] (sort blender-creatures)
+                 :let [path (.getCanonicalPath (io/file "assets" asset))
+                       [ours jme] (blender-bench/medians
+                                   runs (cond-> [#(util/load-blender-model am path)]
+                                          theirs (conj #(theirs path))))]]
+             {:creature name :cortex-ms ours :jme3-blender-ms jme
+              :speed-up (when (and ours jme) (/ jme ours))}))
+      (finally (.setLevel quiet level)))))
 
 (def growth-tolerance
   "How far above n log n's own fitted exponent a measured exponent may
