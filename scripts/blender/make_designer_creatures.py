@@ -39,7 +39,6 @@ import os
 import sys
 
 import bpy
-from mathutils import Euler, Vector
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
@@ -259,24 +258,49 @@ def nearest(p, segs, count):
 
 
 def frame(rotation):
-    return Euler(rotation, "XYZ").to_matrix()
+    """The rotation matrix of Blender's XYZ Euler angles (Rz Ry Rx), in doubles.
+
+    (mathutils works in single precision; these numbers go into expected.json.)"""
+    def mul(a, b):
+        return [[sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+    (cx, cy, cz), (sx, sy, sz) = ([math.cos(a) for a in rotation],
+                                  [math.sin(a) for a in rotation])
+    rx = [[1, 0, 0], [0, cx, -sx], [0, sx, cx]]
+    ry = [[cy, 0, sy], [0, 1, 0], [-sy, 0, cy]]
+    rz = [[cz, -sz, 0], [sz, cz, 0], [0, 0, 1]]
+    return mul(rz, mul(ry, rx))
+
+
+def apply(m, v):
+    return [sum(m[i][k] * v[k] for k in range(3)) for i in range(3)]
+
+
+def transpose(m):
+    return [list(row) for row in zip(*m)]
 
 
 def cortex_order(j, segs):
-    """The joint's two intended segments as cortex orders them."""
-    rot_inv = frame(j["rotation"]).inverted()
-    p = Vector(j["position"])
-    key = {n: Vector((1, 1, 1)).dot(rot_inv @ (Vector(find(segs, n)["center"]) - p))
+    """The joint's two intended segments as cortex orders them: by
+    (1,1,1) . (centre - joint) in the joint's frame, smaller first."""
+    rot_inv = transpose(frame(j["rotation"]))
+    p = j["position"]
+    key = {n: sum(apply(rot_inv, [c - q for c, q in zip(find(segs, n)["center"], p)]))
            for n in j["intended"]}
     return sorted(j["intended"], key=lambda n: (key[n], n))
+
+
+def overlap(a, b):
+    """How far boxes a and b overlap along each axis (negative: apart)."""
+    return [min(a["center"][k] + a["half"][k], b["center"][k] + b["half"][k])
+            - max(a["center"][k] - a["half"][k], b["center"][k] - b["half"][k])
+            for k in range(3)]
 
 
 def overlaps(segs):
     out = []
     for i, a in enumerate(segs):
         for b in segs[i + 1:]:
-            ext = [a["half"][k] + b["half"][k] - abs(a["center"][k] - b["center"][k])
-                   for k in range(3)]
+            ext = overlap(a, b)
             if min(ext) > 1e-9:
                 out.append({"segments": sorted([a["name"], b["name"]]), "depth": r9(min(ext)),
                             "volume": r9(ext[0] * ext[1] * ext[2])})
@@ -288,14 +312,17 @@ def joint_entry(j, segs):
     entry = {"name": j["name"], "parent": j["parent"], "type": spec[":type"][1:],
              "segments": cortex_order(j, segs), "position": vec9(j["position"]),
              "rotation_euler": vec9(j["rotation"]),
-             "frame_axes": [vec9(c) for c in frame(j["rotation"]).transposed()],
+             "frame_axes": [vec9(c) for c in transpose(frame(j["rotation"]))],
              "spec": j["spec"], "keys": sorted(k[1:] for k in spec)}
     if spec[":type"] == ":hinge":
         entry["limit"] = vec9(spec[":limit"])
         axis = spec.get(":axis")
         entry["axis"] = vec9(axis) if axis is not None else None
-        entry["axis_world"] = (vec9(frame(j["rotation"]) @ axis.normalized())
-                               if axis is not None else None)
+        if axis is not None:
+            length = math.sqrt(sum(c * c for c in axis))
+            entry["axis_world"] = vec9(apply(frame(j["rotation"]), [c / length for c in axis]))
+        else:
+            entry["axis_world"] = None
     elif spec[":type"] == ":cone":
         for k in ("limit-xz", "limit-xy", "twist"):
             entry[k] = r9(spec[":" + k])
@@ -324,6 +351,17 @@ def expected(d):
             m["nearest"] = nearest(j["position"], segs, 6)
         if name == "stray":
             m["entry"] = joint_entry(j, segs)
+        if name == "Joints":
+            m["expected_name"] = "joints"
+        if name == "rock":
+            r = find(segs, name)
+            m["center"], m["half_extents"] = vec9(r["center"]), vec9(r["half"])
+            m["overlaps"] = [o for o in overlaps(segs) if name in o["segments"]]
+            near = sorted((r9(cube), r9(dist), j["name"])
+                          for j in d["joints"]
+                          for dist, cube, _ in [box_distances(j["position"], r)])
+            m["joints_near"] = [{"joint": n, "distance": dist, "cube": cube}
+                                for cube, dist, n in near[:3]]
         out["mistake"] = m
     return out
 
@@ -346,18 +384,17 @@ def build(d):
 
 
 def compact(v, indent=0):
-    """JSON with small flat objects and lists of scalars on one line."""
+    """JSON with flat objects and lists of scalars on one line when short."""
     flat = json.dumps(v, ensure_ascii=False)
 
     def leaf(x):
         return not isinstance(x, (dict, list)) or (
             isinstance(x, list) and all(not isinstance(y, (dict, list)) for y in x))
 
-    if leaf(v) or (isinstance(v, dict) and all(leaf(x) for x in v.values())
-                   and len(flat) + indent <= 100):
+    if not isinstance(v, (dict, list)):
         return flat
-    if isinstance(v, list) and all(isinstance(x, list) and leaf(x) for x in v) \
-            and len(flat) + indent <= 100:
+    if len(flat) + indent <= 150 and (
+            all(leaf(x) for x in (v.values() if isinstance(v, dict) else v))):
         return flat
     pad = " " * (indent + 1)
     if isinstance(v, dict):

@@ -337,15 +337,17 @@
                        "; known types: " (str/join ", " (joint-types)))
                   {:type (:type constraints)})))
 
-(defn- body-frame
-  "`rotation` (a world rotation) seen from inside `control`'s body."
+(defn body-frame
+  "`rotation` (a world rotation) seen from inside `control`'s body: how
+  a joint's frame is given to Bullet, which wants it in each body's own
+  frame."
   ^Matrix3f [^RigidBodyControl control ^Matrix3f rotation]
   (.mult (.invert (.getPhysicsRotationMatrix control)) rotation))
 
 (defn- number-field
   [constraints k]
   (let [v (get constraints k)]
-    (if (and (number? v) (Double/isFinite (double v)))
+    (if (util/finite? v)
       (float v)
       (throw (ex-info (str (name (:type constraints)) " joint needs a finite number for " k
                            ", not " (pr-str v))
@@ -373,13 +375,11 @@
             (throw (ex-info (str "hinge needs :limit [low high] with low <= high, not "
                                  (pr-str limit))
                             {:limit limit})))
-        world-axis (.mult rotation (util/blender-to-jme (.normalize ^Vector3f axis)))
+        axis (util/blender-to-jme (.normalize ^Vector3f axis))
         [low high] limit]
     (doto (HingeJoint. control-a control-b pivot-a pivot-b
-                       (.mult (.invert (.getPhysicsRotationMatrix ^RigidBodyControl control-a))
-                              world-axis)
-                       (.mult (.invert (.getPhysicsRotationMatrix ^RigidBodyControl control-b))
-                              world-axis))
+                       (.mult (body-frame control-a rotation) axis)
+                       (.mult (body-frame control-b rotation) axis))
       (.setLimit (float low) (float high)))))
 
 (defmethod joint-dispatch :cone

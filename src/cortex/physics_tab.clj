@@ -84,7 +84,7 @@
   object when it is missing or not finite."
   [what name settings k]
   (let [v (get settings k)]
-    (if (and (number? v) (Double/isFinite (double v)))
+    (if (util/finite? v)
       (double v)
       (fail what name (str (str/replace (clojure.core/name k) "-" "_") " must be a finite number, not "
                            (pr-str v))
@@ -142,7 +142,6 @@
       "CONE" {:shape "CONE" :radius radius :height (* 2 hy)}
       {:shape shape})))
 
-(defn- vec3 ^Vector3f [[x y z]] (Vector3f. (float x) (float y) (float z)))
 
 (defn- tiny
   "Bullet refuses shapes of zero size; keep every size above a hair."
@@ -174,11 +173,11 @@
         use-margin? (or (:use-margin rb) (#{"CONVEX_HULL" "MESH" "CONE"} (:shape rb)))
         [shape warnings]
         (case (:shape settings)
-          "BOX" [(BoxCollisionShape. (vec3 (:half-extents settings)))]
+          "BOX" [(BoxCollisionShape. (util/vec3 (:half-extents settings)))]
           "SPHERE" [(SphereCollisionShape. (float (:radius settings)))]
           "CAPSULE" [(CapsuleCollisionShape. (float (tiny (:radius settings)))
                                              (float (:height settings)) (int up-axis))]
-          "CYLINDER" [(CylinderCollisionShape. (vec3 (:half-extents settings)) (int up-axis))]
+          "CYLINDER" [(CylinderCollisionShape. (util/vec3 (:half-extents settings)) (int up-axis))]
           "CONE" [(ConeCollisionShape. (float (tiny (:radius settings)))
                                        (float (tiny (:height settings))) (int up-axis))]
           "CONVEX_HULL" [(hull)]
@@ -244,24 +243,12 @@
   (.updateGeometricState creature)
   (mapv rigid-body! (rigid-body-objects creature)))
 
-(def ^Matrix3f blender-axes
-  "Blender's local X, Y and Z seen in jME's Y-up axes, as the columns of
-  a rotation: (x, y, z) -> (x, z, -y)."
-  (Matrix3f. 1 0 0
-             0 0 1
-             0 -1 0))
-
 (defn constraint-frame
   "The frame of constraint object `node` in the world, as Blender uses
   it: its world rotation (scale left out), whose columns are the
   object's own X, Y and Z axes in jME's world coordinates."
   ^Matrix3f [^Spatial node]
-  (.mult (.toRotationMatrix (.getWorldRotation node)) blender-axes))
-
-(defn- in-body
-  "World rotation `frame` seen from inside `control`'s body."
-  ^Matrix3f [^RigidBodyControl control ^Matrix3f frame]
-  (.mult (.invert (.getPhysicsRotationMatrix control)) frame))
+  (.mult (.toRotationMatrix (.getWorldRotation node)) util/blender-axes))
 
 (def locked-angle
   "jBullet frees a 6-DOF angle whose lower limit equals its upper one
@@ -293,7 +280,7 @@
                         [(- (first l) locked-angle) (+ (second l) locked-angle)]
                         :else l))
                 ls)]
-    [(vec3 (map first ls)) (vec3 (map second ls))]))
+    [(util/vec3 (map first ls)) (util/vec3 (map second ls))]))
 
 (defn- six-dof
   "A jME SixDofJoint in the frames of `ctx`, linear limits `lin` and
@@ -536,7 +523,7 @@
             frame (constraint-frame node)
             ctx {:name name :rbc rbc :a a :b b
                  :pivot-a (body/pivot a center) :pivot-b (body/pivot b center)
-                 :rot-a (in-body a frame) :rot-b (in-body b frame)}
+                 :rot-a (body/body-frame a frame) :rot-b (body/body-frame b frame)}
             {:keys [^PhysicsJoint joint warnings] :as made} (constraint-joint type ctx)]
         (.setCollisionBetweenLinkedBodys joint (not (:disable-collisions rbc)))
         (when-let [sc (:spring-control made)]
@@ -606,7 +593,7 @@
   (let [g (get world "gravity" [0.0 0.0 -9.81])
         w (double (get world "effector_gravity" 1.0))]
     (if (get world "use_gravity" true)
-      (.mult (util/blender-to-jme (vec3 g)) (float w))
+      (.mult (util/blender-to-jme (util/vec3 g)) (float w))
       (Vector3f.))))
 
 (defn with-physics-data!

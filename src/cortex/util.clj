@@ -12,7 +12,7 @@
            (com.jme3.font BitmapText)
            (com.jme3.light AmbientLight DirectionalLight)
            (com.jme3.material Material)
-           (com.jme3.math ColorRGBA Quaternion Vector3f)
+           (com.jme3.math ColorRGBA Matrix3f Quaternion Vector3f)
            (com.jme3.scene Geometry Node Spatial)
            (com.jme3.scene.shape Box Sphere)))
 
@@ -36,6 +36,26 @@
   "`m` with `f` applied to each of its values."
   [f m]
   (into (empty m) (for [[k v] m] [k (f v)])))
+
+(defn finite?
+  "Is `x` a number that is neither infinite nor NaN? Every number a
+  designer or a file hands cortex passes this check before it reaches
+  the physics."
+  [x]
+  (and (number? x) (Double/isFinite (double x))))
+
+(defn vec3
+  "The Vector3f of three numbers `[x y z]`."
+  ^Vector3f [[x y z]]
+  (Vector3f. (float x) (float y) (float z)))
+
+(def ^Matrix3f blender-axes
+  "The change from Blender's Z-up axes to jME's Y-up ones, as a rotation
+  whose columns are Blender's X, Y and Z seen in jME: (x, y, z) -> (x, z,
+  -y). Multiply a Blender vector by it to get the jME vector."
+  (Matrix3f. 1 0 0
+             0 0 1
+             0 -1 0))
 
 (defn jme-to-blender
   "A jME (Y-up) vector in Blender's Z-up coordinates."

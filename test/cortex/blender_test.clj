@@ -522,6 +522,11 @@
         (is (instance? Node (blender/load-blender-model
                              (str (write-tmp "cyclic-list.blend" bad)))))))))
 
+(deftest one-change-of-axes
+  (is (= m/y-up
+         (let [^com.jme3.math.Matrix3f a util/blender-axes]
+           (vec (for [i (range 3)] (vec (for [j (range 3)] (double (.get a i j))))))))))
+
 (defn hot-ranges
   "[start end] byte ranges worth damaging in a valid file: every block
   header and the blocks of objects, meshes, scenes, collections, the

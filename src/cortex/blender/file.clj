@@ -486,28 +486,6 @@
                    (range (min (long n) (quot (long avail) (max 1 size)))))))
       [])))
 
-(defn- read-prim
-  "Read one value of SDNA primitive type `t` (size `size`) at `off`."
-  [^ByteBuffer buf t ^long size ^long off]
-  (let [o (int off)]
-    (case t
-      ("char" "int8_t") (long (.get buf o))
-      ("uchar" "uint8_t") (bit-and (long (.get buf o)) 0xff)
-      "bool" (not (zero? (.get buf o)))
-      ("short" "int16_t") (long (.getShort buf o))
-      ("ushort" "uint16_t") (bit-and (long (.getShort buf o)) 0xffff)
-      ("int" "int32_t") (long (.getInt buf o))
-      ("uint" "uint32_t") (bit-and (long (.getInt buf o)) 0xffffffff)
-      "float" (.getFloat buf o)
-      "double" (.getDouble buf o)
-      ("int64_t" "uint64_t") (.getLong buf o)
-      (case size
-        1 (long (.get buf o))
-        2 (long (.getShort buf o))
-        4 (long (.getInt buf o))
-        8 (.getLong buf o)
-        nil))))
-
 (defn read-ptr
   "The pointer stored at `off` in a block of `group`, or nil for NULL.
   4-byte pointers are read unsigned."
@@ -561,7 +539,13 @@
     "float" (fn [^ByteBuffer b ^long o] (.getFloat b (int o)))
     "double" (fn [^ByteBuffer b ^long o] (.getDouble b (int o)))
     ("int64_t" "uint64_t") (fn [^ByteBuffer b ^long o] (.getLong b (int o)))
-    (fn [^ByteBuffer b ^long o] (read-prim b t size o))))
+    ;; a type this reader does not name: an integer of its size
+    (case size
+      1 (fn [^ByteBuffer b ^long o] (long (.get b (int o))))
+      2 (fn [^ByteBuffer b ^long o] (long (.getShort b (int o))))
+      4 (fn [^ByteBuffer b ^long o] (long (.getInt b (int o))))
+      8 (fn [^ByteBuffer b ^long o] (.getLong b (int o)))
+      (fn [_ _] nil))))
 
 (defn field-reader
   "The function that decodes field `f` from a struct view: numbers,

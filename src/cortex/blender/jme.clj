@@ -4,7 +4,8 @@
   parented as in Blender, a Geometry per material under each mesh
   object's Node."
   (:require [cortex.blender.math :as m]
-            [cortex.blender.mesh :as mesh])
+            [cortex.blender.mesh :as mesh]
+            [cortex.util :as util :refer [vec3]])
   (:import [com.jme3.scene Node Geometry Mesh VertexBuffer$Type Spatial]
            [com.jme3.math Vector3f Quaternion Matrix3f ColorRGBA Transform]
            [com.jme3.material Material]
@@ -26,8 +27,6 @@
      :rotation rotation
      :scale scale
      :residual (when-not (m/near-identity? res 1e-5) res)}))
-
-(defn- vec3 ^Vector3f [[x y z]] (Vector3f. (float x) (float y) (float z)))
 
 (defn- quat
   "A jME Quaternion from a 3x3 rotation (rows)."

@@ -98,14 +98,8 @@
                             :double (.getDouble buf o)
                             :bool (not (zero? (.get buf o))))))
                       (range n)))
-      (= sub :group) (let [lay (f/struct-layout bf "IDProperty")
-                           size (long (:size lay))
-                           g (nth (f/pointed-bytes bf ptr) 2)]
-                       (vec (for [i (range (min n (quot (long avail) size)))
-                                  :let [r (f/ref-at bf lay (+ (long off) (* (long i) size))
-                                                    (+ (long off) (long avail)) g)]
-                                  :when r]
-                              (idprop-value bf r (inc (long depth))))))
+      (= sub :group) (mapv #(idprop-value bf % (inc (long depth)))
+                           (f/deref-array bf ptr "IDProperty" n))
       :else [])))
 
 (defn idprop-value
@@ -132,15 +126,9 @@
                               :let [v (idprop-value bf c (inc (long depth)))]
                               :when (some? v)]
                           [(f/fget c "name") v]))
-        :idparray (let [lay (f/struct-layout bf "IDProperty")
-                        n (long (or (f/fget p "len") 0))
-                        [off avail g] (f/pointed-bytes bf (f/fget data "pointer"))]
-                    (if off
-                      (vec (keep #(some-> (f/ref-at bf lay (+ (long off) (* (long %) (long (:size lay))))
-                                                    (+ (long off) (long avail)) g)
-                                          (as-> r (idprop-value bf r (inc (long depth)))))
-                                 (range (min n (quot (long avail) (long (:size lay)))))))
-                      []))
+        :idparray (vec (keep #(idprop-value bf % (inc (long depth)))
+                             (f/deref-array bf (f/fget data "pointer") "IDProperty"
+                                            (long (or (f/fget p "len") 0)))))
         :id (some-> (f/deref-ptr bf (f/fget data "pointer")) f/id-name)
         nil))))
 
