@@ -34,7 +34,8 @@ from mathutils import Vector
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import dump  # noqa: E402
-from check_creatures import closed, euclid_to_mesh, read_joint, signed_volume, world_verts  # noqa: E402
+from check_creatures import (closed, euclid_to_mesh, read_joint, signed_volume,  # noqa: E402
+                             world_verts)
 
 TOL = 1e-5
 GAP_HALF = 0.015
@@ -167,7 +168,8 @@ def check_file(path, exp, fail):
             if min(ext) > TOL:
                 found.append((sorted([a.name, b.name]), min(ext)))
     if len(found) != len(exp["overlaps"]) or not all(
-            f[0] == e["segments"] and close(f[1], e["depth"]) for f, e in zip(found, exp["overlaps"])):
+            f[0] == e["segments"] and close(f[1], e["depth"])
+            for f, e in zip(found, exp["overlaps"])):
         fail("%s: overlaps %s" % (name, found))
 
     # joints
@@ -270,12 +272,14 @@ def check_mistake(kind, exp, rows, fail):
         ok = pairs[0] == pairs[1] == sorted(want)
         info = "%s and %s both join %s" % (obj, m["duplicates"], pairs[0])
     elif kind == "misnamed-joints":
-        ok = bpy.data.objects.get("joints") is None and len(bpy.data.objects["Joints"].children) == 13
+        ok = (bpy.data.objects.get("joints") is None
+              and len(bpy.data.objects["Joints"].children) == 13)
         info = "no object named joints; Joints has %d children" % len(
             bpy.data.objects["Joints"].children)
     elif kind == "stray-joint":
         s = bpy.data.objects.get("stray")
-        dist = measure(s.matrix_world.translation, [o for o in bpy.data.objects if o.type == "MESH"])
+        dist = measure(s.matrix_world.translation,
+                       [o for o in bpy.data.objects if o.type == "MESH"])
         near = sorted(dist.items(), key=lambda kv: (kv[1][0], kv[0]))
         ok = (s.type == "EMPTY" and s.parent is None and s.get("joint") == "{:type :point}"
               and {n for n, _ in near[:2]} == set(want)

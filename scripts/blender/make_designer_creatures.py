@@ -201,7 +201,8 @@ VARIANTS = [
     ("misplaced-joint", moved("knee-front-r", (0.7, -0.6, KNEE_Z),
                               "moved 0.3 along -Y (outward): 0.2 from both its segments")),
     ("far-joint", moved("knee-back-l", (-0.7, 4.4, KNEE_Z),
-                        "moved 4.1 along +Y: 4.0 from every segment it could join")),
+                        "moved 4.1 along +Y: 4.0 from its two segments (Euclidean), the cube "
+                        "meets five segments at 4.0")),
     ("inside-joint", moved("knee-front-l", (0.0, 0.0, TORSO_Z),
                            "moved to the torso's centre, 0.25 inside it")),
     ("ambiguous-joint", ambiguous),
@@ -210,7 +211,7 @@ VARIANTS = [
     ("stray-joint", stray),
     ("typo-key", respec("knee-front-r",
                         "{:type :hinge :limit [0 (/ Math/PI 2)] :axs (Vector3f. 0 1 0)}",
-                        ":axs instead of :axis (cortex would use its default axis, X)")),
+                        ":axs instead of :axis (a hinge without :axis turns about X)")),
     ("degree-limit", respec("knee-front-r", hinge(0, 90, "0 1 0"),
                             ":limit [0 90]: degrees where radians are meant")),
     ("overlap", rock),
