@@ -1,6 +1,11 @@
 (ns cortex.blender
   "Load Blender creatures into jME: cortex's own .blend reader, for
-  files saved by Blender 2.48 through 5.0."
+  files saved by Blender 2.48 through 5.0.
+
+  Entry points: `load-blender-model` (a file or asset as a jME Node;
+  also reachable as cortex.util/load-blender-model), `read-blend` (a
+  file as data, no jME), `load-bytes`, `register-loader!` (make any
+  AssetManager read .blend files with cortex's reader)."
   (:require [clojure.java.io :as io]
             [cortex.blender.file :as file]
             [cortex.blender.scene :as scene]

@@ -1,7 +1,14 @@
 (ns cortex.body
   "Give a creature loaded from Blender a physical body: a rigid body for
   every segment and a Bullet joint for every joint marker, as the
-  creature's designer described them in Blender."
+  creature's designer described them in Blender.
+
+  Entry points: `body!` (all of it), `physical!` (segments made solid),
+  `joints!` (segments joined), `joints` (the joint markers),
+  `joint-targets` (the two segments a joint joins), `connect`,
+  `joint-dispatch` (a multimethod: add joint types), `joint-types`,
+  `read-joint` (a joint description, read safely), `segments`, `mass`,
+  `pivot`, `pivot-in-world`."
   (:require [clojure.edn :as edn]
             [clojure.string :as str]
             [cortex.sense :as sense]
@@ -58,7 +65,7 @@
           (for [^Vector3f d (sphere-directions limit)]
             (apply max-key #(.dot d ^Vector3f %) points))))))
 
-(defn hull-shape
+(defn- hull-shape
   "A convex hull collision shape for `geom`: its mesh at the geometry's
   world scale (a rigid body has no scale of its own), simplified to at
   most `max-hull-points` points. The geometry keeps its full visual mesh."
@@ -200,7 +207,7 @@
     (Math/sqrt (reduce + (map #(let [d (max (Math/abs (double (- %1 %2))) (Math/abs (double (- %1 %3))))] (* d d))
                               c lo hi)))))
 
-(defn joint-frame-position
+(defn- joint-frame-position
   "Where `target` sits as seen from `joint`: its offset in the joint's
   own frame, in Blender's axes."
   ^Vector3f [^Spatial joint ^Spatial target]
@@ -261,7 +268,7 @@
   [form why]
   (throw (ex-info (str why ": " (pr-str form)) {:form form})))
 
-(defn evaluate
+(defn- evaluate
   "The value of `form`, a joint description read as data, allowing only
   numbers, keywords, vectors, maps, Math/PI, Math/E, + - * / and
   (Vector3f. x y z). Nothing else is evaluated, so nothing in a file

@@ -1,7 +1,10 @@
 (ns cortex.main
   "What `lein run` does: the worm (or the hand) falls onto a floor, in a
   window when there is a display, otherwise drawn offscreen to PNG
-  frames, an MP4 and a GIF."
+  frames, an MP4 and a GIF.
+
+  Entry points: `-main` (lein run), `plan` (the arguments as data),
+  `named-creature`, `demo-world`."
   (:require [clojure.java.io :as io]
             [clojure.string :as str]
             [clojure.tools.cli :as cli]
@@ -55,11 +58,11 @@
                  (util/display-dilated-time w (.getTimer ^SimpleApplication w)))
                world/no-op))
 
-(def frames-per-second
+(def ^:private frames-per-second
   "Simulated frames a second: the ratchet timer's step is 1/60 s."
   60)
 
-(def cli-options
+(def ^:private cli-options
   [["-c" "--creature NAME" "the creature: worm or hand"
     :default "worm"
     :validate [#(contains? creatures %)
@@ -78,7 +81,7 @@
    [nil "--window" "open a window (needs a display)"]
    ["-h" "--help" "say how to use lein run"]])
 
-(defn usage
+(defn- usage
   "The help text, around tools.cli's summary of the options."
   [summary]
   (str/join "\n" ["lein run [options]: the worm falls onto a floor."
@@ -138,7 +141,7 @@
             :when path]
       (println label path))))
 
-(defn show-offscreen!
+(defn- show-offscreen!
   "Draw the demo offscreen for the planned number of frames, recording
   every one in the planned folder, then make the still and videos."
   [{:keys [creature frames out size]}]
@@ -154,7 +157,7 @@
                        frames seconds (/ frames seconds))))
     (report-files! out creature)))
 
-(defn show-window!
+(defn- show-window!
   "Open the demo in a window and wait until it is closed, recording to
   the planned folder when asked to. When the window cannot even open (a
   display without OpenGL, say) and the plan allows it, draw offscreen

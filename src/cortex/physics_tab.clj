@@ -3,7 +3,13 @@
   with a Rigid Body (Physics tab) becomes a jBullet rigid body, every
   Rigid Body Constraint a jBullet joint between the two objects it
   names, placed and turned as the constraint object is. No custom
-  property is needed."
+  property is needed.
+
+  Entry points: `load-creature` (a .blend file with its Physics tab
+  settings), `physics-body!` (build the bodies and joints),
+  `warnings` (what could not be built as Blender would, as data),
+  `gravity` (the file's rigid body world gravity), `rigid-body` and
+  `rigid-body-constraint` (an object's settings)."
   (:require [clojure.string :as str]
             [cortex.blender :as blender]
             [cortex.blender.file]
@@ -120,12 +126,12 @@
       (GeometryBatchFactory/mergeGeometries (java.util.ArrayList. ^java.util.Collection geoms) m)
       m)))
 
-(def up-axis
+(def ^:private up-axis
   "jME's Y: the axis Blender's upright shapes (capsule, cylinder, cone),
   which stand on the object's local Z, stand on once in Y-up."
   1)
 
-(defn shape-settings
+(defn- shape-settings
   "What Blender's rigidbody_validate_sim_shape makes of a shape, as
   data: the shape's name and sizes, from `half` (the half extents of the
   object's scaled bounding box, jME axes: Blender's x, z, y). Like
@@ -196,7 +202,7 @@
       (.setMargin ^CollisionShape shape (float margin)))
     [shape (vec warnings)]))
 
-(defn body-mass
+(defn- body-mass
   "The mass Blender simulates a rigid body with: its mass when it is
   ACTIVE and dynamic, 0 (it never moves by itself) when it is PASSIVE,
   animated (kinematic) or not dynamic, as Blender's RBO_GET_MASS."
@@ -250,7 +256,7 @@
   ^Matrix3f [^Spatial node]
   (.mult (.toRotationMatrix (.getWorldRotation node)) util/blender-axes))
 
-(def locked-angle
+(def ^:private locked-angle
   "jBullet frees a 6-DOF angle whose lower limit equals its upper one
   (its RotationalLimitMotor tests lo >= hi); a limit that Blender gives
   as one value is widened by this much (radians) on each side, so it
@@ -369,7 +375,7 @@
                  [(str "rigid body constraint " (pr-str name)
                        ": jBullet's 6-DOF joint has no linear motor; the linear motor is left off")])}))
 
-(defn springs
+(defn- springs
   "The springs of constraint `rbc`: for each axis whose spring is on,
   {:angular? :axis (0 1 2) :stiffness :damping}."
   [name rbc]
@@ -403,7 +409,7 @@
         angle (.toAngleAxis q axis)]
     (if (< (.length axis) 1e-9) (Vector3f.) (.mult (.normalize axis) angle))))
 
-(defn spring-forces!
+(defn- spring-forces!
   "Push the bodies `a` and `b` of a spring constraint back towards the
   rest pose its frames had when it was made (both frames at one place,
   turned alike), as Bullet's 6-DOF spring does: along (and about) each
@@ -431,7 +437,7 @@
         (do (.applyImpulse b push (.subtract pb (.getPhysicsLocation b)))
             (.applyImpulse a (.negate push) (.subtract pa (.getPhysicsLocation a))))))))
 
-(defn spring-control
+(defn- spring-control
   "A jME physics control that runs `spring-forces!` before every physics
   step of the space it joins: jBullet has no spring constraint, so the
   springs of a GENERIC_SPRING constraint are forces cortex applies."

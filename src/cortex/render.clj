@@ -2,7 +2,10 @@
   "Worlds people can see: started in a window when there is a display,
   or run offscreen for an exact number of frames with real OpenGL and
   no window; and any world's frames recorded to PNG files, then to an
-  MP4 and a GIF with ffmpeg."
+  MP4 and a GIF with ffmpeg.
+
+  Entry points: `start-window!`, `run-offscreen!`, `await-world!`,
+  `record!`, `make-videos!`, `frames-in`, `display?`."
   (:require [clojure.java.io :as io]
             [clojure.java.shell :as shell]
             [clojure.string :as str]
@@ -56,7 +59,7 @@
   ([display-name]
    (boolean (some-> (parse-display display-name) (can-connect? 500)))))
 
-(defn check-size
+(defn- check-size
   "[width height] when both are even integers from 16 to 8192, else an
   ex-info saying what is wrong."
   [[width height :as size]]
@@ -76,7 +79,7 @@
     (check-size [(Long/parseLong w) (Long/parseLong h)])
     (throw (ex-info (str "frame size must look like 640x480, not " (pr-str s)) {:size s}))))
 
-(def surfaceless-renderer
+(def ^:private surfaceless-renderer
   "The renderer setting that makes jME use cortex.SurfacelessContext.
   Named by string so that loading this namespace loads no OpenGL."
   "CUSTOMcortex.SurfacelessContext")
@@ -149,7 +152,7 @@
       (.get pixels data (int (* w row)) (int w)))
     image))
 
-(defn frame-grabber
+(defn- frame-grabber
   "A SceneProcessor that, each time its viewport has been drawn, reads
   the frame as a TYPE_INT_RGB BufferedImage and calls (on-frame image).
   The image is reused for the next frame."
@@ -216,11 +219,11 @@
                   (on-end))))
      world)))
 
-(def frame-pattern
+(def ^:private frame-pattern
   "How frames are named: frame-000001.png, frame-000002.png, ..."
   "frame-%06d.png")
 
-(defn frame-file
+(defn- frame-file
   "The file of frame number `n` (counting from 1) in folder `dir`."
   ^File [dir n]
   (io/file dir (format frame-pattern n)))
@@ -232,7 +235,7 @@
        (filter #(re-matches #"frame-\d{6}\.png" (.getName ^File %)))
        (sort-by #(.getName ^File %))))
 
-(defn prepare-folder!
+(defn- prepare-folder!
   "Make folder `dir` if needed and remove the frames an earlier
   recording left in it. Throws an ex-info when it cannot be made or
   written to. Returns it as a File."
@@ -247,14 +250,14 @@
     (run! #(io/delete-file % true) (frames-in f))
     f))
 
-(defn write-png!
+(defn- write-png!
   "Write `image` to `file` as PNG. Returns the file."
   ^File [^BufferedImage image ^File file]
   (when-not (ImageIO/write image "png" file)
     (throw (ex-info (str "no PNG writer for " file) {:file (str file)})))
   file)
 
-(defn progress-line
+(defn- progress-line
   "The text of the progress counter after `n` frames, of `total` when
   known."
   [n total]

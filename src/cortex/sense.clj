@@ -1,6 +1,9 @@
 (ns cortex.sense
   "What senses share: finding the marker nodes a creature's designer
-  placed in Blender, and reading the data attached to them."
+  placed in Blender, and reading the data attached to them.
+
+  Entry points: `meta-data` (an object's custom property),
+  `sense-nodes` (the markers under a named parent)."
   (:import (com.jme3.scene Geometry Node Spatial)))
 
 (set! *warn-on-reflection* true)

@@ -1,7 +1,13 @@
 (ns cortex.util
   "Small helpers the rest of cortex leans on: walking scene graphs,
   making simple physical shapes, lights, coordinate changes between
-  Blender and jMonkeyEngine, and printing from jME's thread."
+  Blender and jMonkeyEngine, and printing from jME's thread.
+
+  Entry points: `load-blender-model` (the reader, loaded lazily),
+  `asset-manager`, `box`, `sphere`, `nodify`, `node-seq`,
+  `blender-to-jme`, `jme-to-blender`, `blender-axes`, `vec3`,
+  `finite?`, `light-up-everything`, `display-dilated-time`,
+  `println-repl`."
   (:import (com.jme3.app SimpleApplication)
            (com.jme3.app.state AbstractAppState)
            (com.jme3.asset AssetManager DesktopAssetManager)

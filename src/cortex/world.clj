@@ -1,7 +1,11 @@
 (ns cortex.world
   "Worlds: jMonkeyEngine applications with Bullet physics, built from a
   scene, a key map and two functions, that run in a window for people
-  or headless, for an exact number of frames, for tests."
+  or headless, for an exact number of frames, for tests.
+
+  Entry points: `world` (make one), `run-world!` (run it headless for N
+  frames), `set-gravity`, `speed-up`, `enable-debug`, `add-element!`,
+  `fire-cannon-ball`, `standard-debug-controls`, `no-op`, `physics-space`."
   (:require [clojure.string :as str]
             [cortex.util :as util])
   (:import (com.jme3.app FlyCamAppState SimpleApplication)

@@ -1,7 +1,12 @@
 (ns cortex.blender.file
   "Read the bytes of a .blend file into blocks and decode its structs
   with the file's own SDNA: no offset is written down here, every one is
-  computed from the struct definitions the file carries."
+  computed from the struct definitions the file carries.
+
+  Entry points: `parse` (bytes to a parsed file), `blocks-with-code`,
+  `block-ref`, `fget`/`fget-in` (a field by name), `deref-ptr`,
+  `deref-array`, `list-seq` (Blender's linked lists), `id-name`,
+  `has-field?`, `fail` (a named error)."
   (:require [clojure.string :as str])
   (:import [java.nio ByteBuffer ByteOrder]
            [java.io ByteArrayInputStream ByteArrayOutputStream InputStream]

@@ -2,7 +2,10 @@
   "Scene data (see cortex.blender.scene) as a jME scene graph shaped as
   jme3-blender shapes it: root Node, scene Node, a Node per object
   parented as in Blender, a Geometry per material under each mesh
-  object's Node."
+  object's Node.
+
+  Entry points: `scene-graph` (scene data to a Node), `material`,
+  `set-user-data!`."
   (:require [cortex.blender.math :as m]
             [cortex.blender.mesh :as mesh]
             [cortex.util :as util :refer [vec3]])
@@ -38,12 +41,12 @@
                                      (float d) (float e) (float f)
                                      (float g) (float h) (float i))))))
 
-(defn trs->transform
+(defn- trs->transform
   "A jME Transform of world-trs map `t`."
   ^Transform [t]
   (Transform. (vec3 (:translation t)) (quat (:rotation t)) (vec3 (:scale t))))
 
-(defn local-transform
+(defn- local-transform
   "The local Transform that puts a child at world Transform `w` under a
   parent at world Transform `p`, undoing jME's composition (world =
   parent.rot * (parent.scale * local.translation) + parent.translation;
@@ -59,7 +62,7 @@
         s (.divide (.getScale w) ps)]
     (Transform. t r s)))
 
-(defn user-value
+(defn- user-value
   "A property value as jME 3.2's UserData accepts it: String, Integer,
   Float, Boolean, Long, List, Map. jME 3.2 has no Double type, so
   doubles become Floats."
@@ -101,7 +104,7 @@
       (dotimes [k 3] (aset v k (/ (aget v k) l))))
     v))
 
-(defn vertex-normals
+(defn- vertex-normals
   "For each vertex, the sum of the (area-weighted) Newell normals of the
   smooth faces around it, as a flat double array; normalised when
   used."
@@ -137,7 +140,7 @@
     (aset out (+ i 1) (float (/ ry l)))
     (aset out (+ i 2) (float (/ rz l)))))
 
-(defn mesh-buffers
+(defn- mesh-buffers
   "Position, normal, texture coordinate (when there are UVs) and index
   arrays for faces `face-ids` of mesh data `md`: a vertex per face
   corner (so flat faces keep their own normal;
@@ -187,7 +190,7 @@
                            (recur ts (inc t)))))]
             (recur more (+ vbase n) (long tend))))))))
 
-(defn jme-mesh
+(defn- jme-mesh
   "A jME Mesh of the arrays from `mesh-buffers` (texture coordinates
   when the mesh has a UV map)."
   ^Mesh [{:keys [^floats positions ^floats normals ^floats texcoords ^ints indices]}]
@@ -213,7 +216,7 @@
                  [(- (* d h) (* e g)) (- (* b g) (* a h)) (- (* a e) (* b d))]]]
         (m/transpose (mapv (fn [row] (mapv #(/ % det) row)) inv))))))
 
-(defn geometries
+(defn- geometries
   "The Geometries of a mesh object: one per material slot its faces use
   (slot numbers clamped to the slots there are, as Blender does), in
   slot order, named object name + 1, 2, ... as jme3-blender names them.

@@ -1,7 +1,10 @@
 (ns cortex.blender.math
   "The little linear algebra the reader needs, on plain Clojure data:
   a 3x3 or 4x4 matrix is a vector of rows (row-major, column vectors
-  multiply on the right, as in Blender's own formulas).")
+  multiply on the right, as in Blender's own formulas).
+
+  Entry points: `mat-mul`, `mat-vec`, `from-blender`, `euler->mat3`,
+  `quat->mat3`, `y-up`, `to-y-up`, `det3`.")
 
 (set! *warn-on-reflection* true)
 

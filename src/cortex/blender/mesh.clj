@@ -1,7 +1,10 @@
 (ns cortex.blender.mesh
   "The base mesh of a Blender Mesh ID in any of the layouts Blender has
   saved since 2.4x, as plain data: vertex positions and polygons, each
-  with its corners, material slot and smooth flag; then triangles."
+  with its corners, material slot and smooth flag; then triangles.
+
+  Entry points: `mesh-data`, `positions`, `face-triangles`, `uvs`,
+  `triangle-count`."
   (:require [cortex.blender.file :as f])
   (:import [java.nio ByteBuffer]))
 

@@ -3,7 +3,11 @@
   tab's Rigid Body (RigidBodyOb), Rigid Body Constraint (RigidBodyCon)
   and the scene's Rigid Body World, read through the file's SDNA by
   field name. Codes and flags are those of Blender's
-  DNA_rigidbody_types.h."
+  DNA_rigidbody_types.h.
+
+  Entry points: `rigid-body`, `rigid-body-constraint`,
+  `rigid-body-world` (an object's or scene's settings as data),
+  `user-data` (what the loader attaches to an object's Node)."
   (:require [cortex.blender.file :as f]))
 
 (set! *warn-on-reflection* true)

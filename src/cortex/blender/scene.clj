@@ -1,7 +1,10 @@
 (ns cortex.blender.scene
   "The objects of a .blend file's scene as plain data: names, types,
   parents, world matrices rebuilt from each object's own transform
-  fields, custom properties and material colours."
+  fields, custom properties and material colours.
+
+  Entry points: `scene-data` (a parsed file's scene as data),
+  `current-scene`, `scene-objects`, `properties`."
   (:require [cortex.blender.file :as f]
             [cortex.blender.math :as m]
             [cortex.blender.mesh :as mesh]
@@ -26,7 +29,7 @@
   [r names]
   (some #(when (f/has-field? r %) (f/fget r %)) names))
 
-(defn rotation-matrix
+(defn- rotation-matrix
   "An object's rotation as Blender's BKE_object_rot_to_mat3 builds it:
   delta rotation times rotation, each in the object's rotation mode
   (Euler orders 1..6, quaternion 0, axis-angle -1). Files from before
@@ -46,7 +49,7 @@
                                      (m/quat->mat3 (or (f/fget ob "quat") [1 0 0 0])))
       :else (m/euler->mat3 rot 1))))
 
-(defn scale-vector
+(defn- scale-vector
   "An object's scale with its delta: `size * dscale` (2.5x+), or
   `size + dsize` in files that only have `dsize`."
   [ob]
@@ -56,7 +59,7 @@
       (f/has-field? ob "dsize") (mapv + s (f/fget ob "dsize"))
       :else s)))
 
-(defn local-matrix
+(defn- local-matrix
   "An object's matrix relative to its parent's (before `parentinv`),
   as BKE_object_to_mat4: rotation * scale, translated by loc + dloc."
   [ob]
@@ -102,7 +105,7 @@
                            (f/deref-array bf ptr "IDProperty" n))
       :else [])))
 
-(defn idprop-value
+(defn- idprop-value
   "The value of IDProperty `p` as Clojure data: strings, longs (int),
   floats, doubles, booleans, vectors (arrays), maps from name to value
   (groups), ID names (ID pointers). Nesting deeper than 64 is cut off,
@@ -156,7 +159,7 @@
   [(or (f/fget ma "r") 0.8) (or (f/fget ma "g") 0.8) (or (f/fget ma "b") 0.8)
    (or (field-any ma ["a" "alpha"]) 1.0)])
 
-(defn material-slots
+(defn- material-slots
   "For each material slot of object `ob` with data `data`, the
   material's name and colour, or nil for an empty slot. A slot's
   material comes from the object when its `matbits` bit says so, else
@@ -233,7 +236,7 @@
           :else (recur (into todo (f/list-seq bf (f/fget b "childbase") "Bone"))
                        (conj seen (:offset b))))))))
 
-(defn bone-matrix
+(defn- bone-matrix
   "For an object parented to a bone (partype 7): the bone's pose matrix
   in its armature's frame, moved from the bone's head to its tail, as
   Blender's ob_parbone does; nil when the pose or bone is missing. The
@@ -253,7 +256,7 @@
             t (mapv + (m/translation m) (mapv #(* len (double %)) y))]
         (m/mat3->mat4 (m/mat4->mat3 m) t)))))
 
-(defn object-info
+(defn- object-info
   "What the reader keeps of the Object struct `ob`. Objects are known by
   :key, the byte offset of their struct in the file (old pointers are
   not unique in 5.0 files)."
@@ -279,7 +282,7 @@
      :physics (physics/user-data bf ob)
      :mesh-ref (when (and (= type "MESH") data (= "Mesh" (:name (:layout data)))) data)}))
 
-(defn world-matrices
+(defn- world-matrices
   "Each object's world matrix, by key: parent's world * parentinv *
   local, as Blender's solve_parenting does for object parents, with the
   bone's matrix after the parent's for bone parents (partype 7). A
@@ -329,7 +332,7 @@
           infos
           (recur (into infos extra) (dec (long rounds))))))))
 
-(defn break-cycles
+(defn- break-cycles
   "`infos` with parent links that close a cycle removed: walking up from
   each object in turn, a walk that comes back to the object cuts the
   object's own parent link. Each walk is at most as long as `infos`."
