@@ -13,13 +13,16 @@
             [clojure.string :as str]
             [cortex.sense :as sense]
             [cortex.util :as util])
-  (:import (com.jme3.bounding BoundingBox)
+  (:import (com.bulletphysics.collision.shapes ConvexHullShape)
+           (com.bulletphysics.linearmath.convexhull HullDesc HullFlags HullLibrary HullResult)
+           (com.bulletphysics.util IntArrayList ObjectArrayList)
+           (com.jme3.bounding BoundingBox)
            (com.jme3.bullet.collision.shapes HullCollisionShape)
            (com.jme3.bullet.control RigidBodyControl)
-           (com.jme3.bullet.joints ConeJoint HingeJoint SixDofJoint)
+           (com.jme3.bullet.joints ConeJoint HingeJoint PhysicsJoint SixDofJoint)
            (com.jme3.bullet.objects PhysicsRigidBody)
            (com.jme3.collision CollisionResults)
-           (com.jme3.math Matrix3f Vector3f)
+           (com.jme3.math Matrix3f Quaternion Vector3f)
            (com.jme3.scene Geometry Mesh Node Spatial VertexBuffer$Type)))
 
 (set! *warn-on-reflection* true)
@@ -29,6 +32,9 @@
   no more than about a hundred vertices: contacts on bigger hulls cost
   more and buy nothing a body needs."
   100)
+
+(defn- finite-vector? [^Vector3f v]
+  (and (Float/isFinite (.x v)) (Float/isFinite (.y v)) (Float/isFinite (.z v))))
 
 (defn mesh-points
   "The distinct vertex positions of `mesh`, each multiplied by `scale`,
@@ -70,8 +76,12 @@
   world scale (a rigid body has no scale of its own), simplified to at
   most `max-hull-points` points. The geometry keeps its full visual mesh."
   ^HullCollisionShape [^Geometry geom]
-  (let [points (simplify-hull (mesh-points (.getMesh geom) (.getWorldScale geom))
-                              max-hull-points)]
+  (let [all (mesh-points (.getMesh geom) (.getWorldScale geom))
+        _ (when-not (every? finite-vector? all)
+            (throw (ex-info (str "segment " (pr-str (.getName geom)) ": its mesh has a vertex"
+                                 " that is not made of finite numbers")
+                            {:object (.getName geom)})))
+        points (simplify-hull all max-hull-points)]
     (when (< (count points) 4)
       (throw (ex-info (str "segment " (pr-str (.getName geom)) " has " (count points)
                            " distinct vertices; a solid needs at least 4")
@@ -99,16 +109,66 @@
   [^Node creature]
   (filter #(instance? Geometry %) (util/node-seq creature)))
 
+(defn segment-name
+  "The Blender name of segment `geom`: that of the object Node the
+  loader put it under (a Node carrying \"blender-type\"), or the
+  Geometry's own name for segments made in code."
+  ^String [^Geometry geom]
+  (let [p (.getParent geom)]
+    (if (and p (some? (.getUserData p "blender-type")))
+      (.getName p)
+      (.getName geom))))
+
+(defn- finite-rotation? [^Quaternion q]
+  (let [xs [(.getX q) (.getY q) (.getZ q) (.getW q)]]
+    (and (every? #(Float/isFinite %) xs)
+         (> (reduce + (map #(* % %) xs)) 1e-12))))
+
+(defn- check-placement!
+  "Throw an ex-info naming `what` when `spatial`'s world transform is not
+  made of finite numbers (or its rotation has no length)."
+  [what ^Spatial spatial]
+  (let [bad (cond (not (finite-vector? (.getWorldTranslation spatial))) "position"
+                  (not (finite-rotation? (.getWorldRotation spatial))) "rotation"
+                  (not (finite-vector? (.getWorldScale spatial))) "scale")]
+    (when bad
+      (throw (ex-info (str what " " (pr-str (.getName spatial)) ": its " bad
+                           " in the world is not made of finite numbers"
+                           " (check the object and its parents in Blender)")
+                      {:object (.getName spatial) :field (keyword bad)})))))
+
+(def default-options
+  "What `body!` uses when not told otherwise:
+  :strict?            refuse joints it has doubts about (true), or build
+                      them and record a warning (false);
+  :tolerance          how far a joint empty may be from the segments it
+                      joins, in world units; nil for a tenth of the
+                      creature's median segment size;
+  :angular-damping    each segment's, see above;
+  :sleeping-thresholds [linear m/s, angular rad/s] below which a body
+                      at rest for 2 s is put to sleep."
+  {:strict? true
+   :tolerance nil
+   :angular-damping 0.5
+   :sleeping-thresholds [0.8 2.0]})
+
 (defn physical!
   "Make every segment of `creature` solid: a rigid body with a convex
-  hull shape and the segment's mass. Segments that already have a rigid
+  hull shape and the segment's mass, the damping and sleeping thresholds
+  of `opts` (see `default-options`). Segments that already have a rigid
   body keep it, so calling this twice is harmless. Returns the creature."
-  [^Node creature]
-  (.updateGeometricState creature)
-  (doseq [^Geometry geom (segments creature)
-          :when (nil? (.getControl geom RigidBodyControl))]
-    (.addControl geom (RigidBodyControl. (hull-shape geom) (float (mass geom)))))
-  creature)
+  ([creature] (physical! creature {}))
+  ([^Node creature opts]
+   (let [{:keys [angular-damping sleeping-thresholds]} (merge default-options opts)
+         [lin ang] sleeping-thresholds]
+     (.updateGeometricState creature)
+     (doseq [^Geometry geom (segments creature)
+             :when (nil? (.getControl geom RigidBodyControl))]
+       (check-placement! "segment" geom)
+       (.addControl geom (doto (RigidBodyControl. (hull-shape geom) (float (mass geom)))
+                           (.setSleepingThresholds (float lin) (float ang))
+                           (.setAngularDamping (float angular-damping))))))
+   creature))
 
 (def ^{:doc "The children of the creature's \"joints\" node: one empty
   per joint."
@@ -215,44 +275,124 @@
    (.mult (.inverse (.getWorldRotation joint))
           (.subtract (.getWorldTranslation target) (.getWorldTranslation joint)))))
 
+(defn- touches?
+  [^Geometry geom ^Vector3f center r]
+  (pos? (.collideWith geom (BoundingBox. center (float r) (float r) (float r))
+                      (CollisionResults.))))
+
+(defn- reach-of
+  "The half-width of the smallest cube centred on `center` that touches
+  `geom`'s triangles, knowing that one of half-width `hi` does."
+  [geom center hi]
+  (loop [lo 0.0 hi (double hi) i 0]
+    (if (= i 20)
+      hi
+      (let [mid (/ (+ lo hi) 2)]
+        (if (touches? geom center mid)
+          (recur lo mid (inc i))
+          (recur mid hi (inc i)))))))
+
+(defn nearest-segments
+  "The physical segments of `index` (see `segment-index`) nearest to
+  `joint`, as maps of :geom, :name (see `segment-name`) and :distance
+  (the half-width of the smallest cube centred on the joint that touches
+  the segment), nearest first, ties by name: the two nearest and every
+  other segment within `window` of the second. When even a cube holding
+  the whole creature finds fewer than two, an error names the joint."
+  [index ^Spatial joint window]
+  (let [center (.getWorldTranslation joint)
+        limit (* 2 (max 0.01 (reach index center)))
+        r (loop [r 0.01]
+            (let [found (touching index center r)]
+              (cond (>= (count found) 2) r
+                    (> r limit)
+                    (throw (ex-info (str "joint " (pr-str (.getName joint))
+                                         ": found " (count found)
+                                         " segment(s) near it, a joint needs two")
+                                    {:joint (.getName joint)
+                                     :found (map segment-name found)}))
+                    :else (recur (* 2 r)))))
+        outer (+ r (double window))
+        measured (sort-by (juxt :distance :name)
+                          (for [g (touching index center outer)]
+                            {:geom g :name (segment-name g)
+                             :distance (reach-of g center outer)}))
+        d2 (double (:distance (second measured)))]
+    (vec (take-while #(<= (double (:distance %)) (+ d2 (double window))) measured))))
+
+(defn- ordered-pair
+  "The two segments `geoms` in the order the joint's frame gives them."
+  [^Spatial joint geoms]
+  (sort-by #(.dot (Vector3f. 1 1 1) (joint-frame-position joint %)) geoms))
+
 (defn targets-near
   "The two physical segments in `index` (see `segment-index`) closest
   to `joint`, ordered as `joint-targets` says."
   [index ^Spatial joint]
-  (let [center (.getWorldTranslation joint)
-        limit (* 2 (max 0.01 (reach index center)))
-        ;; each cube size is probed once, however often the search asks
-        found (memoize (fn [r] (vec (touching index center r))))
-        [lo hi] (loop [r 0.01]
-                  (cond (>= (count (found r)) 2) [(/ r 2) r]
-                        (> r limit)
-                        (throw (ex-info (str "joint " (pr-str (.getName joint))
-                                             ": found " (count (found r))
-                                             " segment(s) near it, a joint needs two")
-                                        {:joint (.getName joint)
-                                         :found (map #(.getName ^Spatial %) (found r))}))
-                        :else (recur (* 2 r))))
-        r (loop [lo lo hi hi i 0]
-            (if (or (= i 24) (= 2 (count (found hi))))
-              hi
-              (let [mid (/ (+ lo hi) 2)]
-                (if (>= (count (found mid)) 2)
-                  (recur lo mid (inc i))
-                  (recur mid hi (inc i))))))
-        pair (take 2 (sort-by #(.getName ^Spatial %) (found r)))]
-    (sort-by #(.dot (Vector3f. 1 1 1) (joint-frame-position joint %)) pair)))
+  (ordered-pair joint (map :geom (take 2 (nearest-segments index joint 0.0)))))
 
 (defn joint-targets
   "The two physical segments of `parts` closest to `joint`, found by
   growing a cube around the joint from 0.01 by doubling until it touches
-  two of them, then closing in on the smallest such cube. They are
-  ordered by where they lie in the joint's frame (in Blender's axes):
-  the one with the smaller x + y + z first. Call after `physical!`.
-  When even a cube holding the whole creature finds fewer than two, the
-  error names the joint."
+  two of them, then measuring how near each is. They are ordered by
+  where they lie in the joint's frame (in Blender's axes): the one with
+  the smaller x + y + z first. Call after `physical!`. When even a cube
+  holding the whole creature finds fewer than two, the error names the
+  joint. Doubts about the pair are `joints!`'s business."
   [^Node parts ^Spatial joint]
   (.updateGeometricState parts)
   (targets-near (segment-index parts) joint))
+
+(defn tolerance
+  "How far a joint empty of the indexed creature may be from the two
+  segments it joins: a tenth of the median segment size."
+  [index]
+  (* 0.1 (double (:cell index))))
+
+(defn- fmt [x] (format "%.3f" (double x)))
+
+(defn- distances-text
+  [measured]
+  (str/join ", " (for [{:keys [name distance]} measured]
+                   (str name " " (fmt distance)))))
+
+(defn joint-doubts
+  "The doubts about joint empty `joint-name` given its `measured` nearest
+  segments (see `nearest-segments`) and the creature's `tolerance`: maps
+  of :kind (:ambiguous-joint or :far-joint), :joint, :segments,
+  :distances, :tolerance and a :message saying what to change."
+  [joint-name measured tolerance]
+  (let [[a b & more] measured
+        base {:joint joint-name :tolerance tolerance
+              :distances (into {} (map (juxt :name :distance)) measured)}]
+    (cond-> []
+      (seq more)
+      (conj (assoc base :kind :ambiguous-joint
+                   :segments (mapv :name measured)
+                   :message (str "joint " (pr-str joint-name) " is about equally near "
+                                 (count measured) " segments (" (distances-text measured)
+                                 "; the tolerance is " (fmt tolerance) "), so which two it joins"
+                                 " cannot be told; move the empty into the gap between the two"
+                                 " it should join, with every other segment farther away")))
+      (> (double (:distance b)) (double tolerance))
+      (conj (assoc base :kind :far-joint
+                   :segments [(:name a) (:name b)]
+                   :message (str "joint " (pr-str joint-name) " is " (fmt (:distance a))
+                                 " from " (:name a) " and " (fmt (:distance b)) " from "
+                                 (:name b) ", more than the tolerance " (fmt tolerance)
+                                 "; move the empty into the gap where the two meet"))))))
+
+(defn duplicate-doubts
+  "A doubt for each pair of segments that more than one joint joins,
+  given `pairs`: [joint-name [segment-name segment-name]] in order."
+  [pairs]
+  (for [[pair names] (group-by (comp set second) pairs)
+        :when (> (count names) 1)
+        :let [joints (mapv first names)]]
+    {:kind :duplicate-joint :joints joints :segments (vec (sort pair))
+     :message (str "joints " (str/join " and " (map pr-str joints)) " both join "
+                   (str/join " and " (sort pair))
+                   "; delete one, or move it into the gap it belongs to")}))
 
 (def ^:private constants
   {'Math/PI Math/PI, 'java.lang.Math/PI Math/PI,
@@ -444,25 +584,253 @@
         (throw (ex-info (str label ": " (ex-message e))
                         (assoc (ex-data e) :joint (.getName joint)) e))))))
 
+(defn- edit-distance
+  "Levenshtein distance between strings `a` and `b`."
+  [^String a ^String b]
+  (peek (reduce (fn [prev ca]
+                  (reduce (fn [row [j cb]]
+                            (conj row (min (inc (peek row)) (inc (prev (inc j)))
+                                           (+ (prev j) (if (= ca cb) 0 1)))))
+                          [(inc (first prev))]
+                          (map-indexed vector b)))
+                (vec (range (inc (count b))))
+                a)))
+
+(defn- like-joints?
+  [^String name]
+  (let [n (-> name str/lower-case str/trim (str/replace #"\.\d+$" ""))]
+    (<= (long (edit-distance n "joints")) 1)))
+
+(defn naming-doubts
+  "Doubts and warnings about how `creature` names its joints: a node
+  named nearly, but not exactly, \"joints\" when none is; objects with a
+  `joint` property that are not under the joints node."
+  [^Node creature]
+  (let [marker-parent (.getChild creature "joints")
+        near (when-not marker-parent
+               (first (filter #(like-joints? (.getName ^Spatial %))
+                              (rest (util/node-seq creature)))))]
+    (concat
+     (when near
+       [{:kind :misnamed-joints :object (.getName ^Spatial near)
+         :message (str "there is no node named \"joints\", but there is "
+                       (pr-str (.getName ^Spatial near))
+                       "; rename it to joints (exactly, in lower case) so that cortex"
+                       " finds the joints under it")}])
+     (for [^Spatial s (rest (util/node-seq creature))
+           :when (some? (.getUserData s "joint"))
+           :let [p (.getParent s)]
+           :when (not (or (and marker-parent (identical? p marker-parent))
+                          (and near (identical? p near))))]
+       {:kind :stray-joint :object (.getName s) :warning? true
+        :message (str "object " (pr-str (.getName s)) " has a joint property but is not"
+                      " under the joints node, so it joins nothing; parent it to joints"
+                      " or remove the property")}))))
+
+(defn- shrunk-bound
+  ^BoundingBox [{:keys [lo hi]}]
+  (let [c (map #(/ (+ (double %1) (double %2)) 2) lo hi)
+        e (map #(* 0.499 (- (double %2) (double %1))) lo hi)
+        [cx cy cz] c [ex ey ez] e]
+    (BoundingBox. (Vector3f. cx cy cz) (float ex) (float ey) (float ez))))
+
+(defn- meets? [^Geometry g ^BoundingBox b]
+  (pos? (.collideWith g b (CollisionResults.))))
+
+(defn overlap-warnings
+  "Warnings for the segments of `index` that overlap at rest though no
+  joint joins them; `joined` is a set of #{geom geom} pairs."
+  [{:keys [items] :as index} joined]
+  (distinct
+   (for [a items
+         b (nearby index (:lo a) (:hi a))
+         :let [ga (:geom a) gb (:geom b)
+               na (segment-name ga) nb (segment-name gb)]
+         :when (neg? (compare na nb))
+         :when (not (contains? joined #{ga gb}))
+         :when (and (meets? ga (shrunk-bound b)) (meets? gb (shrunk-bound a)))]
+     {:kind :overlap :segments [na nb] :warning? true
+      :message (str "segments " na " and " nb " overlap where they start, and no joint"
+                    " joins them: Bullet will push them apart on the first step;"
+                    " move them apart or join them")})))
+
+(def ^:private record-key "cortex.body")
+
+(defn- label [^Node creature] (str "creature " (pr-str (.getName creature))))
+
+(defn- in-creature
+  "Run `f`; an ex-info it throws comes out prefixed with the creature."
+  [^Node creature f]
+  (try (f)
+       (catch clojure.lang.ExceptionInfo e
+         (throw (ex-info (str (label creature) ", " (ex-message e))
+                         (assoc (ex-data e) :creature (.getName creature)) e)))))
+
+(defn- plan-joint
+  "What joint empty `marker` will join, measured."
+  [index tol ^Spatial marker]
+  (check-placement! "joint" marker)
+  (let [measured (nearest-segments index marker tol)
+        pair (vec (ordered-pair marker (map :geom (take 2 measured))))]
+    {:marker marker :name (.getName marker) :measured measured :geoms pair
+     :segments (mapv segment-name pair)}))
+
+(defn- vec3-of [^Vector3f v] [(.x v) (.y v) (.z v)])
+
+(defn- joint-record
+  "What is kept of a made joint."
+  [{:keys [^Spatial marker name measured geoms segments]} physics-joint]
+  (let [description (read-joint (sense/meta-data marker "joint"))
+        q (.getWorldRotation marker)]
+    {:name name :type (:type description) :description description
+     :physics-joint physics-joint :geoms geoms :segments segments
+     :pivot (vec3-of (.getWorldTranslation marker))
+     :rotation [(.getX q) (.getY q) (.getZ q) (.getW q)]
+     :distances (into {} (for [{n :name d :distance} (take 2 measured)] [n d]))}))
+
+(defn- log-warnings!
+  [^Node creature warnings]
+  (let [logger (java.util.logging.Logger/getLogger "cortex.body")]
+    (doseq [{:keys [message]} warnings]
+      (.warning logger (str (label creature) ": " message)))))
+
 (defn joints!
   "Join the segments of `creature` with the joints its \"joints\" node
-  describes. Call after `physical!`. Returns the creature."
-  [^Node creature]
-  (.updateGeometricState creature)
-  (let [index (segment-index creature)]
-    (doseq [joint (joints creature)]
-      (try
-        (let [[obj-a obj-b] (targets-near index joint)]
-          (connect obj-a obj-b joint))
-        (catch clojure.lang.ExceptionInfo e
-          (throw (ex-info (str "creature " (pr-str (.getName creature)) ", " (ex-message e))
-                          (assoc (ex-data e) :creature (.getName creature)) e))))))
-  creature)
+  describes. Call after `physical!`. `opts` (see `default-options`):
+  :strict? (default true) makes any doubt about a joint an error listing
+  every doubt; false builds the joints anyway and keeps the doubts as
+  warnings; :tolerance overrides the creature's. Returns the creature."
+  ([creature] (joints! creature {}))
+  ([^Node creature opts]
+   (let [{:keys [strict?] :as opts} (merge default-options opts)]
+     (.updateGeometricState creature)
+     (let [index (segment-index creature)
+           tol (double (or (:tolerance opts) (tolerance index)))
+           plans (mapv #(in-creature creature (fn [] (plan-joint index tol %)))
+                       (joints creature))
+           naming (naming-doubts creature)
+           doubts (vec (concat (remove :warning? naming)
+                               (mapcat #(joint-doubts (:name %) (:measured %) tol) plans)
+                               (duplicate-doubts (map (juxt :name :segments) plans))))]
+       (when (and strict? (seq doubts))
+         (throw (ex-info (str (label creature) ": " (count doubts)
+                              (if (= 1 (count doubts)) " doubt" " doubts")
+                              " about its joints:\n"
+                              (str/join "\n" (map #(str "- " (:message %)) doubts))
+                              "\n(to build it anyway, (body! creature {:strict? false}))")
+                         {:creature (.getName creature) :doubts doubts})))
+       (let [made (mapv (fn [{:keys [marker geoms] :as p}]
+                          (in-creature creature
+                                       #(joint-record p (connect (first geoms) (second geoms)
+                                                                 marker))))
+                        plans)
+             joined (set (map #(set (:geoms %)) made))
+             warnings (vec (concat (map #(assoc % :relaxed? true) doubts)
+                                   (filter :warning? naming)
+                                   (overlap-warnings index joined)))]
+         (log-warnings! creature warnings)
+         (.setUserData creature record-key
+                       {:joints made :warnings warnings :tolerance tol}))))
+   creature))
 
 (defn body!
   "Give `creature` its whole physical body: solid segments joined as its
-  designer said. Returns the creature."
+  designer said. `opts` as for `physical!` and `joints!` (see
+  `default-options`). Returns the creature."
+  ([creature] (body! creature {}))
+  ([^Node creature opts]
+   (doto creature
+     (physical! opts)
+     (joints! opts))))
+
+(defn- build-record
   [^Node creature]
-  (doto creature
-    (physical!)
-    (joints!)))
+  (or (.getUserData creature record-key)
+      (throw (ex-info (str (label creature) " has no body yet: call body! first")
+                      {:creature (.getName creature)}))))
+
+(defn- hull-volume
+  "The volume of the convex hull of `points` (javax.vecmath.Vector3f)."
+  [points]
+  (let [desc (HullDesc. HullFlags/TRIANGLES (count points)
+                        (doto (ObjectArrayList.) (.addAll ^java.util.Collection points)))
+        result (HullResult.)]
+    (if-not (.createConvexHull (HullLibrary.) desc result)
+      0.0
+      (let [^ObjectArrayList vs (.outputVertices result)
+            ^IntArrayList is (.indices result)
+            v (fn [i] (let [^javax.vecmath.Vector3f p (.get vs (.get is (int i)))]
+                        [(double (.x p)) (double (.y p)) (double (.z p))]))]
+        (Math/abs
+         (double
+          (reduce + (for [t (range (quot (.numIndices result) 3))
+                         :let [[ax ay az] (v (* 3 t)) [bx by bz] (v (+ 1 (* 3 t)))
+                               [cx cy cz] (v (+ 2 (* 3 t)))]]
+                     (/ (+ (* ax (- (* by cz) (* bz cy)))
+                           (* ay (- (* bz cx) (* bx cz)))
+                           (* az (- (* bx cy) (* by cx))))
+                        6.0)))))))))
+
+(defn- segment-report
+  [^Geometry g]
+  (let [^RigidBodyControl c (.getControl g RigidBodyControl)
+        cshape (.getCShape (.getCollisionShape c))
+        points (when (instance? ConvexHullShape cshape)
+                 (vec (.getPoints ^ConvexHullShape cshape)))]
+    {:name (segment-name g) :mass (double (.getMass c))
+     :hull-points (count points)
+     :hull-volume (if points (hull-volume points) 0.0)}))
+
+(defn- joint-report
+  [{:keys [name type description physics-joint segments pivot distances]}]
+  (let [[x y z] pivot]
+    {:name name :type type :class (.getSimpleName (class physics-joint))
+     :segments segments
+     :pivot (vec3-of (util/jme-to-blender (Vector3f. x y z)))
+     :distances distances
+     :limits (select-keys description [:limit :limit-xz :limit-xy :twist])}))
+
+(defn report
+  "What `body!` built of `creature`, as data: {:creature name, :segments
+  [{:name :mass :hull-points :hull-volume}], :joints [{:name :type :class
+  :segments [first second] :pivot [x y z] (Blender's world axes)
+  :distances {segment distance} :limits {...}}], :warnings [{:kind
+  :message ...}], :tolerance}."
+  [^Node creature]
+  (let [{:keys [joints warnings tolerance]} (build-record creature)]
+    {:creature (.getName creature)
+     :segments (vec (for [g (segments creature)
+                          :when (.getControl ^Geometry g RigidBodyControl)]
+                      (segment-report g)))
+     :joints (mapv joint-report joints)
+     :warnings warnings
+     :tolerance tolerance}))
+
+(defn segment
+  "The segment (a Geometry with a rigid body) of `creature` that Blender
+  calls `object-name`; the first, for an object with several materials.
+  An error names the segments there are when there is none."
+  ^Geometry [^Node creature ^String object-name]
+  (or (first (filter #(= object-name (segment-name %)) (segments creature)))
+      (throw (ex-info (str (label creature) " has no segment " (pr-str object-name)
+                           "; its segments are "
+                           (str/join ", " (distinct (map segment-name (segments creature)))))
+                      {:creature (.getName creature) :segment object-name}))))
+
+(defn joint-records
+  "The joints `body!` made of `creature`, in order, as maps of :name,
+  :type, :description, :physics-joint (the jBullet joint), :geoms (the
+  two segments, in order), :segments (their names), :pivot and
+  :rotation (the joint empty's world position and rotation when it was
+  made, jME axes), :distances."
+  [^Node creature]
+  (:joints (build-record creature)))
+
+(defn joint
+  "The jBullet joint `body!` made for the joint empty `joint-name`."
+  ^PhysicsJoint [^Node creature ^String joint-name]
+  (or (:physics-joint (first (filter #(= joint-name (:name %)) (joint-records creature))))
+      (throw (ex-info (str (label creature) " has no joint " (pr-str joint-name)
+                           "; its joints are "
+                           (str/join ", " (map :name (joint-records creature))))
+                      {:creature (.getName creature) :joint joint-name}))))
