@@ -509,21 +509,85 @@
     (.setLinearLowerLimit Vector3f/ZERO)
     (.setLinearUpperLimit Vector3f/ZERO)))
 
+(def common-joint-keys
+  "The keys every joint description may have."
+  #{:type :strength :kp :kd})
+
+(defmulti joint-keys
+  "The keys, besides `common-joint-keys`, that a joint description of
+  this :type may have; nil when any key is allowed."
+  identity)
+
+(defmethod joint-keys :default [_] nil)
+(defmethod joint-keys :point [_] #{})
+(defmethod joint-keys :hinge [_] #{:limit :axis})
+(defmethod joint-keys :cone [_] #{:limit-xz :limit-xy :twist})
+
+(defn check-keys
+  "`description`, or an error naming its unknown keys and the keys its
+  type takes."
+  [description]
+  (when-let [known (joint-keys (:type description))]
+    (let [allowed (into common-joint-keys known)
+          unknown (remove allowed (keys description))]
+      (when (seq unknown)
+        (throw (ex-info (str (name (:type description)) " joint: unknown "
+                             (if (next unknown) "keys " "key ")
+                             (str/join ", " (sort unknown))
+                             "; a " (name (:type description)) " joint takes "
+                             (str/join ", " (sort allowed)))
+                        {:unknown (vec unknown) :allowed allowed})))))
+  description)
+
+(defn- angle-error
+  [what value allowed]
+  (ex-info (str what " " (pr-str value) " is outside " allowed
+                ": angles are in radians (90 degrees is (/ Math/PI 2))")
+           {:value value}))
+
+(defn- atan2-fast
+  "jBullet's ScalarUtil.atan2Fast, by which its hinge measures the angle
+  its limits hold: exact at multiples of pi/4, monotonic."
+  ^double [^double y ^double x]
+  (let [c1 (/ Math/PI 4) c2 (* 3 c1) ay (Math/abs y)
+        angle (if (>= x 0)
+                (- c1 (* c1 (/ (- x ay) (+ x ay))))
+                (- c2 (* c1 (/ (+ x ay) (- ay x)))))]
+    (if (neg? y) (- angle) angle)))
+
+(defn jbullet-hinge-limits
+  "The [low high] to give jBullet's HingeJoint so that the designer's
+  limits [lo hi] (radians, right-hand rule about the designer's axis,
+  second segment relative to the first) hold exactly."
+  [[lo hi]]
+  (let [fast (fn [a] (atan2-fast (Math/sin a) (Math/cos a)))]
+    [(- (fast (double hi))) (- (fast (double lo)))]))
+
+(defn- axis-vector
+  "A hinge :axis as a non-zero Vector3f: given as one, or as [x y z]."
+  ^Vector3f [axis]
+  (let [v (cond (instance? Vector3f axis) axis
+                (and (vector? axis) (= 3 (count axis)) (every? util/finite? axis))
+                (util/vec3 axis))]
+    (if (and v (Float/isFinite (.length ^Vector3f v)) (pos? (.length ^Vector3f v)))
+      v
+      (throw (ex-info (str "hinge :axis must be a non-zero [x y z] or (Vector3f. x y z), not "
+                           (pr-str axis))
+                      {:axis axis})))))
+
 (defmethod joint-dispatch :hinge
   [constraints control-a control-b pivot-a pivot-b ^Matrix3f rotation]
-  (let [axis (get constraints :axis Vector3f/UNIT_X)
+  (let [axis (axis-vector (get constraints :axis Vector3f/UNIT_X))
         limit (:limit constraints)
-        _ (when-not (and (instance? Vector3f axis) (pos? (.length ^Vector3f axis)))
-            (throw (ex-info (str "hinge :axis must be a non-zero (Vector3f. x y z), not "
-                                 (pr-str axis))
-                            {:axis axis})))
-        _ (when-not (and (vector? limit) (= 2 (count limit)) (every? number? limit)
+        _ (when-not (and (vector? limit) (= 2 (count limit)) (every? util/finite? limit)
                          (<= (first limit) (second limit)))
             (throw (ex-info (str "hinge needs :limit [low high] with low <= high, not "
                                  (pr-str limit))
                             {:limit limit})))
-        axis (util/blender-to-jme (.normalize ^Vector3f axis))
-        [low high] limit]
+        _ (when-not (every? #(<= (- Math/PI) (double %) Math/PI) limit)
+            (throw (angle-error "hinge :limit" limit "[-pi, pi]")))
+        axis (util/blender-to-jme (.normalize axis))
+        [low high] (jbullet-hinge-limits limit)]
     (doto (HingeJoint. control-a control-b pivot-a pivot-b
                        (.mult (body-frame control-a rotation) axis)
                        (.mult (body-frame control-b rotation) axis))
@@ -534,6 +598,10 @@
   (let [xz (number-field constraints :limit-xz)
         xy (number-field constraints :limit-xy)
         twist (number-field constraints :twist)]
+    (doseq [k [:limit-xz :limit-xy :twist]
+            :let [v (double (get constraints k))]
+            :when (not (<= 0.0 v Math/PI))]
+      (throw (angle-error (str "cone " k) (get constraints k) "[0, pi]")))
     (doto (ConeJoint. control-a control-b pivot-a pivot-b
                       (body-frame control-a rotation) (body-frame control-b rotation))
       (.setLimit xz xy twist))))
@@ -571,7 +639,7 @@
       (let [text (sense/meta-data joint "joint")
             _ (when (nil? text)
                 (throw (ex-info "it has no joint property" {})))
-            constraints (read-joint text)
+            constraints (check-keys (read-joint text))
             control-a (.getControl obj-a RigidBodyControl)
             control-b (.getControl obj-b RigidBodyControl)
             center (.getWorldTranslation joint)]
