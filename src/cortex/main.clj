@@ -34,29 +34,64 @@
                          "; choose one of " (str/join ", " (sort (keys creatures))))
                     {:creature creature-name}))))
 
-(defn- frame-the-fall!
-  "Put the camera back from the creature's starting place and level
-  with its fall, aimed at the middle of the drop to the floor."
-  [^SimpleApplication world]
-  (doto (.getCamera world)
-    (.setLocation (Vector3f. -3 0 16))
-    (.lookAt (Vector3f. 0 -4.5 0) Vector3f/UNIT_Y))
-  world)
+(defn- drop-height
+  "How far under a built `creature` the floor goes: six units for the
+  reference creatures, a tenth of its height (at least 0.05) for one
+  from a file."
+  [creature file?]
+  (if file?
+    (let [[lo hi] (demo/bounds creature)]
+      (max 0.05 (* 0.1 (- (double (second hi)) (double (second lo))))))
+    6.0))
 
 (defn demo-world
-  "A world in which `creature` (a node loaded from Blender) is given its
-  body and falls onto the floor under gravity. Keys: space fires a
-  cannon ball, G/U switch gravity on/off, H shows the physics, and the
-  fly-by camera's keys. Simulated time is shown on screen."
-  [creature]
-  (world/world (util/nodify [(body/body! creature) (demo/floor)])
-               (merge world/standard-debug-controls demo/gravity-control demo/debug-control)
-               (fn [w]
-                 (demo/setup w)
-                 (frame-the-fall! w)
-                 (world/speed-up w)
-                 (util/display-dilated-time w (.getTimer ^SimpleApplication w)))
-               world/no-op))
+  "A world in which `creature` (a node loaded from Blender, given its
+  body here) falls onto a floor under gravity; see cortex.demo/stage.
+  Returns [world watched], where watched is an atom of what
+  cortex.demo/watch measures."
+  ([creature] (demo-world creature false))
+  ([creature file?]
+   (let [built (body/body! creature)
+         [watch seen] (demo/watch built)]
+     [(demo/stage built (drop-height built file?) watch) seen])))
+
+(defn- table
+  "Rows (maps) as a text table with the columns `cols` ([key title])."
+  [cols rows]
+  (let [cell (fn [v] (cond (float? v) (format "%.4g" (double v))
+                           (and (sequential? v) (every? number? v))
+                           (str "[" (str/join " " (map #(format "%.3f" (double %)) v)) "]")
+                           (keyword? v) (name v)
+                           :else (str v)))
+        cells (for [r rows] (mapv #(cell (get r (first %))) cols))
+        widths (apply map max (map (comp count second) cols)
+                      (map #(map count %) (or (seq cells) [(repeat (count cols) "")])))
+        line (fn [xs] (str/join "  " (map #(format (str "%-" %1 "s") %2) widths xs)))]
+    (str/join "\n" (concat [(line (map second cols))
+                            (line (map #(apply str (repeat % "-")) widths))]
+                           (map line cells)))))
+
+(defn report-text
+  "A built creature's report (see cortex.body/report) as tables."
+  [{:keys [creature segments joints warnings tolerance]}]
+  (str "creature " creature ": " (count segments) " segments, " (count joints)
+       " joints (tolerance " (format "%.3f" (double tolerance)) ")\n\n"
+       (table [[:name "segment"] [:mass "mass"] [:hull-points "hull points"]
+               [:hull-volume "hull volume"]]
+              segments)
+       "\n\n"
+       (table [[:name "joint"] [:type "type"] [:class "jBullet"] [:first "first"]
+               [:second "second"] [:pivot "pivot (Blender)"] [:gap "distances"]
+               [:limits "limits"]]
+              (for [{:keys [segments distances limits] :as j} joints]
+                (assoc j :first (first segments) :second (second segments)
+                       :gap (mapv distances segments)
+                       :limits (str/join " " (for [[k v] (sort limits)]
+                                               (str (name k) " " (pr-str v)))))))
+       "\n\n"
+       (if (seq warnings)
+         (str "warnings:\n" (str/join "\n" (map #(str "- " (:message %)) warnings)))
+         "no warnings")))
 
 (def ^:private frames-per-second
   "Simulated frames a second: the ratchet timer's step is 1/60 s."
@@ -79,12 +114,14 @@
     :parse-fn render/parse-size]
    [nil "--headless" "draw offscreen even when there is a display"]
    [nil "--window" "open a window (needs a display)"]
+   [nil "--report" "with a FILE.blend: print what body! builds of it, and stop"]
    ["-h" "--help" "say how to use lein run"]])
 
 (defn- usage
   "The help text, around tools.cli's summary of the options."
   [summary]
-  (str/join "\n" ["lein run [options]: the worm falls onto a floor."
+  (str/join "\n" ["lein run [options] [FILE.blend]: the worm (or the hand, or the"
+                  "creature in FILE.blend) falls onto a floor and comes to rest."
                   ""
                   "In a window when there is a display (space fires a ball, G/U gravity on/off,"
                   "H shows the physics, W A S D Q Z and the mouse move the camera, Esc quits);"
@@ -95,28 +132,35 @@
 
 (defn plan
   "What lein run should do, given its `args` and whether there is a
-  `display?`: a map with :action :help, :error (with :message), or
-  :window or :offscreen with :creature, :frames, :out, :size, :record?
-  (whether to record frames) and :fallback? (whether to draw offscreen
-  when the window cannot open)."
+  `display?`: a map with :action :help, :error (with :message), :report
+  (with :file), or :window or :offscreen with :creature, :frames, :out,
+  :size, :record? (whether to record frames), :fallback? (whether to
+  draw offscreen when the window cannot open) and, for a creature from
+  a file, :file."
   [args display?]
-  (let [{:keys [options errors summary]} (cli/parse-opts args cli-options)
-        {:keys [creature seconds out resolution headless window help]} options]
+  (let [{:keys [options errors summary arguments]} (cli/parse-opts args cli-options)
+        {:keys [creature seconds out resolution headless window help report]} options
+        [file & extra] arguments
+        creature (if file (str/replace (.getName (io/file file)) #"\.blend$" "") creature)]
     (cond
       help {:action :help :message (usage summary)}
       errors {:action :error :message (str/join "\n" (conj errors "(lein run --help for help)"))}
+      (seq extra) {:action :error :message (str "one creature file at a time, not " (pr-str (vec arguments)))}
+      (and report (not file)) {:action :error :message "--report needs a FILE.blend"}
+      report {:action :report :file file}
       (and headless window) {:action :error :message "--headless and --window contradict each other"}
       (and window (not display?))
       {:action :error
        :message "no display to open a window on (DISPLAY is unset or unreachable); try --headless"}
       :else
-      {:action (if (and display? (not headless)) :window :offscreen)
-       :creature creature
-       :frames (max 1 (Math/round (* (double seconds) frames-per-second)))
-       :out (or out (str "out/" creature))
-       :record? (or (boolean headless) (not display?) (some? out))
-       :fallback? (not window)
-       :size resolution})))
+      (cond-> {:action (if (and display? (not headless)) :window :offscreen)
+               :creature creature
+               :frames (max 1 (Math/round (* (double seconds) frames-per-second)))
+               :out (or out (str "out/" creature))
+               :record? (or (boolean headless) (not display?) (some? out))
+               :fallback? (not window)
+               :size resolution}
+        file (assoc :file file)))))
 
 (defn- still!
   "Copy the last recorded frame in `dir` to NAME.png beside it; return
@@ -141,20 +185,38 @@
             :when path]
       (println label path))))
 
+(defn- load-planned
+  "The creature the plan names, loaded; for a file, its report printed
+  once it is built."
+  [{:keys [creature file]}]
+  (if file (util/load-blender-model file) (named-creature creature)))
+
+(defn- planned-world
+  "[world watched] for the plan; a creature from a file has its report
+  printed."
+  [{:keys [file] :as plan}]
+  (let [creature (load-planned plan)
+        [w seen] (demo-world creature (some? file))]
+    (when file
+      (println (report-text (body/report creature))))
+    [w seen]))
+
 (defn- show-offscreen!
   "Draw the demo offscreen for the planned number of frames, recording
-  every one in the planned folder, then make the still and videos."
-  [{:keys [creature frames out size]}]
-  (let [w (demo-world (named-creature creature))
+  every one in the planned folder, then make the still and videos, and
+  say how the body held and settled."
+  [{:keys [creature frames out size] :as plan}]
+  (let [[w seen] (planned-world plan)
         [width height] size
         start (System/nanoTime)]
     (println "no window: drawing" (format "%.1f" (/ frames (double frames-per-second)))
-             "simulated seconds of the" creature "offscreen at" (str width "x" height) "...")
+             "simulated seconds of" creature "offscreen at" (str width "x" height) "...")
     (render/record! w out {:progress (render/progress-printer frames)})
     (render/run-offscreen! w frames {:size size})
     (let [seconds (/ (- (System/nanoTime) start) 1e9)]
       (println (format "drew and wrote %d frames in %.1f s (%.0f a second)"
                        frames seconds (/ frames seconds))))
+    (println (demo/watched @seen))
     (report-files! out creature)))
 
 (defn- show-window!
@@ -163,12 +225,13 @@
   display without OpenGL, say) and the plan allows it, draw offscreen
   instead."
   [{:keys [creature out size record? fallback?] :as plan}]
-  (let [w (demo-world (named-creature creature))]
+  (let [[w seen] (planned-world plan)]
     (when record? (render/record! w out))
     (println "space: fire a ball | G/U: gravity on/off | H: show physics |"
              "W A S D Q Z, mouse: camera | Esc: quit")
     (try
       (render/await-world! (render/start-window! w {:size size}))
+      (println (demo/watched @seen))
       (when record? (report-files! out creature))
       (catch clojure.lang.ExceptionInfo e
         (if (and fallback? (zero? (:frames @w)))
@@ -185,6 +248,7 @@
                  (case action
                    :help (do (println message) 0)
                    :error (do (binding [*out* *err*] (println message)) 2)
+                   :report (do (println (report-text (body/report (body/body! (util/load-blender-model (:file p)) {:strict? false})))) 0)
                    :window (do (show-window! p) 0)
                    :offscreen (do (show-offscreen! p) 0))
                  (catch clojure.lang.ExceptionInfo e

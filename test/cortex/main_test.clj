@@ -41,6 +41,32 @@
         (is (re-find pattern (:message p)) (pr-str args))))
     (is (re-find #"no display" (:message (main/plan ["--window"] false))))))
 
+(deftest creatures-from-files
+  (testing "a .blend file on the command line"
+    (is (= {:action :offscreen :creature "quadruped" :file "test/fixtures/designer/quadruped.blend"
+            :frames 120 :out "out/quadruped" :record? true :fallback? true :size [640 480]}
+           (main/plan ["test/fixtures/designer/quadruped.blend" "-s" "2"] false)))
+    (is (= {:action :report :file "q.blend"} (main/plan ["q.blend" "--report"] false)))
+    (is (re-find #"needs a FILE" (:message (main/plan ["--report"] false))))
+    (is (re-find #"one creature file at a time" (:message (main/plan ["a.blend" "b.blend"] false)))))
+  (testing "the report as tables"
+    (let [c (body/body! (util/load-blender-model "test/fixtures/designer/quadruped.blend"))
+          text (main/report-text (body/report c))
+          lines (clojure.string/split-lines text)]
+      (is (re-find #"14 segments, 13 joints \(tolerance 0\.050\)" text))
+      (is (some #(re-matches #"torso\s+4\.000\s+8\s+0\.8000\s*" %) lines))
+      (is (some #(re-matches #"knee-front-r\s+hinge\s+HingeJoint\s+upper-leg-front-r\s+lower-leg-front-r\s+\[0\.700 -0\.300 0\.515\]\s+\[0\.015 0\.015\].*" %) lines))
+      (is (re-find #"no warnings" text))))
+  (testing "run offscreen: frames, the report, how it held and settled"
+    (let [out (str (System/getProperty "java.io.tmpdir") "/cortex-main-" (System/nanoTime))
+          printed (with-out-str
+                    (#'main/show-offscreen! (assoc (main/plan ["test/fixtures/designer/quadruped.blend"
+                                                               "-s" "0.5" "-o" out "-r" "160x120"] false)
+                                                   :record? true)))]
+      (is (re-find #"hip-front-r\s+cone\s+ConeJoint" printed))
+      (is (re-find #"largest joint gap 0\.0[0-9]+; (still moving after|at rest from) " printed))
+      (is (= 30 (count (render/frames-in out)))))))
+
 (deftest unknown-creatures
   (is (thrown-with-msg? clojure.lang.ExceptionInfo #"no creature called \"cat\""
                         (main/named-creature "cat"))))
@@ -59,10 +85,12 @@
   (for [dx (range -3 4) dy (range -3 4)] (rgb image (+ x dx) (+ y dy))))
 
 (defn- scenery?
-  "Whether a colour is the black sky's or the flat grey floor's."
-  [[r g b :as colour]]
-  (or (= [0 0 0] colour)
-      (and (= r g b) (< 100 r 160))))
+  "Whether a colour is the blue sky's or the floor's, lit or in shadow
+  (a grey with a little green: its channels within 45 of each other);
+  the worm is a strong green."
+  [[r g b]]
+  (or (and (> b (+ r 40)) (> b g))
+      (< (- (max r g b) (min r g b)) 45)))
 
 (defn- mostly-creature?
   "Whether at least 60% of the pixels around `at` are neither sky nor
@@ -81,7 +109,7 @@
 
 (deftest the-worm-is-seen-falling
   (let [worm (main/named-creature "worm")
-        w (main/demo-world worm)
+        [w _] (main/demo-world worm)
         keep #{1 30 80}
         seen (atom {})
         start (System/nanoTime)]
