@@ -11,13 +11,14 @@
   `pivot`, `pivot-in-world`."
   (:require [clojure.edn :as edn]
             [clojure.string :as str]
+            [cortex.mass :as mass]
             [cortex.sense :as sense]
             [cortex.util :as util])
-  (:import (com.bulletphysics.collision.shapes ConvexHullShape)
+  (:import (com.bulletphysics.collision.shapes CompoundShape ConvexHullShape)
            (com.bulletphysics.linearmath.convexhull HullDesc HullFlags HullLibrary HullResult)
            (com.bulletphysics.util IntArrayList ObjectArrayList)
            (com.jme3.bounding BoundingBox)
-           (com.jme3.bullet.collision.shapes HullCollisionShape)
+           (com.jme3.bullet.collision.shapes CompoundCollisionShape HullCollisionShape)
            (com.jme3.bullet.control RigidBodyControl)
            (com.jme3.bullet.joints ConeJoint HingeJoint PhysicsJoint SixDofJoint)
            (com.jme3.bullet.objects PhysicsRigidBody)
@@ -137,6 +138,115 @@
                            " (check the object and its parents in Blender)")
                       {:object (.getName spatial) :field (keyword bad)})))))
 
+(defn- mesh-triangles
+  "The triangles of `geom`'s mesh at its world scale, in its own axes,
+  as [[x y z] [x y z] [x y z]]s."
+  [^Geometry geom]
+  (let [mesh (.getMesh geom)
+        ^Vector3f scale (.getWorldScale geom)
+        positions (.getFloatBuffer mesh VertexBuffer$Type/Position)
+        index (.getIndexBuffer mesh)
+        n-vertices (if positions (quot (.limit positions) 3) 0)
+        vertex (fn [i] (let [i (int i)]
+                         [(* (.x scale) (.get positions (* 3 i)))
+                          (* (.y scale) (.get positions (+ 1 (* 3 i))))
+                          (* (.z scale) (.get positions (+ 2 (* 3 i))))]))
+        corners (if index
+                  (map #(.get index (int %)) (range (.size index)))
+                  (range n-vertices))]
+    (if (and positions (= com.jme3.scene.Mesh$Mode/Triangles (.getMode mesh)))
+      (map #(mapv vertex %) (partition 3 corners))
+      [])))
+
+(defn- quaternion-of
+  "The rotation whose matrix has the columns of `axes` (rows of numbers)."
+  ^Quaternion [axes]
+  (let [[[a b c] [d e f] [g h i]] axes]
+    (.fromRotationMatrix (Quaternion.) (Matrix3f. a b c d e f g h i))))
+
+(defn- inertia-plan
+  "How `geom` is to be massed: {:source :mesh :centre c :moments m
+  :rotation q (or nil when the body is the segment's own frame)}, or
+  {:source :box} when its mesh encloses no volume."
+  [^Geometry geom mass]
+  (if-let [{:keys [centre inertia]} (mass/mesh-properties (mesh-triangles geom) mass)]
+    (let [size (apply max 1e-9 (map #(Math/abs (double %)) (flatten (mesh-triangles geom))))
+          off-diagonal (max (Math/abs (double (get-in inertia [0 1])))
+                            (Math/abs (double (get-in inertia [0 2])))
+                            (Math/abs (double (get-in inertia [1 2]))))
+          diagonal [(get-in inertia [0 0]) (get-in inertia [1 1]) (get-in inertia [2 2])]
+          aligned? (<= off-diagonal (* 1e-6 (apply max 1e-12 diagonal)))
+          centred? (every? #(<= (Math/abs (double %)) (* 1e-6 size)) centre)]
+      (if (and aligned? centred?)
+        {:source :mesh :centre [0.0 0.0 0.0] :moments diagonal :rotation nil}
+        (let [{:keys [moments axes]} (if aligned?
+                                       {:moments diagonal :axes [[1.0 0.0 0.0] [0.0 1.0 0.0] [0.0 0.0 1.0]]}
+                                       (mass/principal inertia))]
+          {:source :mesh :centre centre :moments moments :rotation (quaternion-of axes)})))
+    {:source :box}))
+
+(defn- set-inertia!
+  "Give `control`'s body the principal `moments` of inertia (Bullet keeps
+  the inverse of each)."
+  [^RigidBodyControl control mass [ix iy iz]]
+  (when (pos? (double mass))
+    (doto (.getObjectId control)
+      (.setMassProps (float mass) (javax.vecmath.Vector3f. (float ix) (float iy) (float iz)))
+      (.updateInertiaTensor))))
+
+(defn- offset-control
+  "A RigidBodyControl for `geom` whose body sits at the segment's centre
+  of mass `centre` and is turned by `rotation` from the segment's own
+  axes; each frame it places `geom` from its body by undoing that."
+  ^RigidBodyControl [^Geometry geom shape mass ^Vector3f centre ^Quaternion rotation]
+  (let [undo (.inverse rotation)]
+    (proxy [RigidBodyControl] [shape (float mass)]
+      (update [tpf]
+        (let [^RigidBodyControl this this]
+          (when (and (.isEnabled this) (not (and (.isKinematic this) (.isKinematicSpatial this))))
+            (let [rot (.mult (.getPhysicsRotation this) undo)
+                  pos (.subtract (.getPhysicsLocation this) (.mult rot centre))
+                  parent (.getParent geom)]
+              (if parent
+                (do (.setLocalTranslation geom (.worldToLocal parent pos nil))
+                    (.setLocalRotation geom (.mult (.inverse (.getWorldRotation parent)) rot)))
+                (do (.setLocalTranslation geom pos) (.setLocalRotation geom rot))))))))))
+
+(defn- make-body
+  "The rigid body control of segment `geom`: its hull, its mass, and the
+  mass properties `plan` (see `inertia-plan`)."
+  ^RigidBodyControl [^Geometry geom mass {:keys [source centre moments ^Quaternion rotation]}]
+  (let [hull (hull-shape geom)]
+    (if (and (= :mesh source) rotation)
+      (let [c (util/vec3 centre)
+            undo (.inverse rotation)
+            shape (doto (CompoundCollisionShape.)
+                    (.addChildShape hull (.negate (.mult undo c)) (.toRotationMatrix undo)))
+            control (offset-control geom shape mass c rotation)
+            rot (.getWorldRotation geom)]
+        (.addControl geom control)
+        (.setPhysicsLocation control (.add (.getWorldTranslation geom) (.mult rot c)))
+        (.setPhysicsRotation control (.mult rot rotation))
+        (set-inertia! control mass moments)
+        control)
+      (let [control (RigidBodyControl. hull (float mass))]
+        (.addControl geom control)
+        (when (= :mesh source) (set-inertia! control mass moments))
+        control))))
+
+(defn segment-pose
+  "Where segment `geom` is now, in its own frame as its designer made it:
+  [position rotation] (a Vector3f and a Quaternion, jME's world axes),
+  from its rigid body. The same as the Geometry's world transform once
+  the scene graph has been brought up to date."
+  [^Geometry geom]
+  (let [^RigidBodyControl c (.getControl geom RigidBodyControl)
+        {:keys [centre ^Quaternion rotation]} (.getUserData geom "cortex.body/mass")]
+    (if rotation
+      (let [rot (.mult (.getPhysicsRotation c) (.inverse rotation))]
+        [(.subtract (.getPhysicsLocation c) (.mult rot (util/vec3 centre))) rot])
+      [(.getPhysicsLocation c) (.getPhysicsRotation c)])))
+
 (def default-options
   "What `body!` uses when not told otherwise:
   :strict?            refuse joints it has doubts about (true), or build
@@ -146,11 +256,15 @@
                       creature's median segment size;
   :angular-damping    each segment's, see above;
   :sleeping-thresholds [linear m/s, angular rad/s] below which a body
-                      at rest for 2 s is put to sleep."
+                      at rest for 2 s is put to sleep;
+  :mass-properties    :mesh (centre of mass and inertia from the
+                      segment's triangles) or :box (the seed's: the
+                      origin, and the hull's bounding box)."
   {:strict? true
    :tolerance nil
    :angular-damping 0.5
-   :sleeping-thresholds [0.8 2.0]})
+   :sleeping-thresholds [0.8 2.0]
+   :mass-properties :mesh})
 
 (defn physical!
   "Make every segment of `creature` solid: a rigid body with a convex
@@ -159,15 +273,18 @@
   body keep it, so calling this twice is harmless. Returns the creature."
   ([creature] (physical! creature {}))
   ([^Node creature opts]
-   (let [{:keys [angular-damping sleeping-thresholds]} (merge default-options opts)
+   (let [{:keys [angular-damping sleeping-thresholds mass-properties]} (merge default-options opts)
          [lin ang] sleeping-thresholds]
      (.updateGeometricState creature)
      (doseq [^Geometry geom (segments creature)
              :when (nil? (.getControl geom RigidBodyControl))]
        (check-placement! "segment" geom)
-       (.addControl geom (doto (RigidBodyControl. (hull-shape geom) (float (mass geom)))
-                           (.setSleepingThresholds (float lin) (float ang))
-                           (.setAngularDamping (float angular-damping))))))
+       (let [m (mass geom)
+             plan (if (= :box mass-properties) {:source :box} (inertia-plan geom m))]
+         (.setUserData geom "cortex.body/mass" plan)
+         (doto (make-body geom m plan)
+           (.setSleepingThresholds (float lin) (float ang))
+           (.setAngularDamping (float angular-damping))))))
    creature))
 
 (def ^{:doc "The children of the creature's \"joints\" node: one empty
@@ -842,12 +959,17 @@
 (defn- segment-report
   [^Geometry g]
   (let [^RigidBodyControl c (.getControl g RigidBodyControl)
-        cshape (.getCShape (.getCollisionShape c))
+        cshape (let [s (.getCShape (.getCollisionShape c))]
+                 (if (instance? CompoundShape s) (.getChildShape ^CompoundShape s 0) s))
         points (when (instance? ConvexHullShape cshape)
-                 (vec (.getPoints ^ConvexHullShape cshape)))]
-    {:name (segment-name g) :mass (double (.getMass c))
-     :hull-points (count points)
-     :hull-volume (if points (hull-volume points) 0.0)}))
+                 (vec (.getPoints ^ConvexHullShape cshape)))
+        {:keys [source centre moments]} (.getUserData g "cortex.body/mass")]
+    (cond-> {:name (segment-name g) :mass (double (.getMass c))
+             :hull-points (count points)
+             :hull-volume (if points (hull-volume points) 0.0)
+             :mass-properties source}
+      (= :mesh source) (assoc :centre-of-mass (vec3-of (util/jme-to-blender (util/vec3 centre)))
+                              :principal-moments (vec moments)))))
 
 (defn- joint-report
   [{:keys [name type description physics-joint segments pivot distances]}]

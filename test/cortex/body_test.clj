@@ -80,6 +80,46 @@
                    (try (body/physical! (util/nodify [g])) ""
                         (catch clojure.lang.ExceptionInfo e (ex-message e))))))))
 
+(defn- off-centre-box
+  "A 2 x 1 x 0.5 box of mass 3 whose origin is on the middle of its -x
+  face (its mesh shifted by +1 in x), turned 0.3 about z, at `at`."
+  [^Vector3f at]
+  (let [mesh (doto (Box. (Vector3f. 0 -0.5 -0.25) (Vector3f. 2 0.5 0.25)))
+        geom (Geometry. "lopsided" mesh)]
+    (doto (Node. "lopsided") (.attachChild geom) (.setUserData "mass" (float 3))
+      (.setLocalTranslation at)
+      (.setLocalRotation (doto (Quaternion.) (.fromAngleAxis 0.3 Vector3f/UNIT_Z))))))
+
+(deftest true-mass-properties
+  (let [c (body/physical! (util/nodify "c" [(off-centre-box (Vector3f. 1 2 3))]))
+        g ^Geometry (first (body/segments c))
+        control ^RigidBodyControl (.getControl g RigidBodyControl)
+        inv (.getInvInertiaDiagLocal (.getObjectId control) (javax.vecmath.Vector3f.))
+        centre-in-world (.localToWorld g (Vector3f. 1 0 0) nil)]
+    (testing "the body sits at the centre of the mesh, the segment stays at its origin"
+      (is (< (.distance (.getPhysicsLocation control) centre-in-world) 1e-5))
+      (is (< (.distance (first (body/segment-pose g)) (Vector3f. 1 2 3)) 1e-5)))
+    (testing "the principal moments of the box, m (b^2 + c^2) / 12 ..."
+      (is (= [0.3125 1.0625 1.25]
+             (sort (map #(/ (Math/round (/ 1e4 (double %))) 1e4) [(.x inv) (.y inv) (.z inv)])))))
+    (testing "spun with nothing else acting, it turns about the centre of its mesh"
+      (.setAngularVelocity control (Vector3f. 0 2 0))
+      (let [w (world/world (util/nodify [c]) {} #(world/set-gravity % Vector3f/ZERO) world/no-op)]
+        (world/run-world! w 60)
+        ;; jME places spatials before it steps the physics: bring the
+        ;; Geometry up to the last step
+        (.update control (float 0))
+        (.updateGeometricState c)
+        (is (< (.distance (.localToWorld g (Vector3f. 1 0 0) nil) centre-in-world) 1e-3))
+        (is (> (.distance (.getWorldTranslation g) (Vector3f. 1 2 3)) 0.5)
+            "while its origin swings round it")
+        (is (< (.distance (.getWorldTranslation g) (first (body/segment-pose g))) 1e-5)
+            "and the Geometry is where segment-pose says")))
+    (testing "the seed's approximation, when asked for"
+      (let [c (body/physical! (util/nodify "c" [(off-centre-box (Vector3f. 1 2 3))]) {:mass-properties :box})
+            control ^RigidBodyControl (.getControl ^Geometry (first (body/segments c)) RigidBodyControl)]
+        (is (< (.distance (.getPhysicsLocation control) (Vector3f. 1 2 3)) 1e-6))))))
+
 (deftest hull-points-carry-world-scale
   (let [points (body/mesh-points (Box. 1 1 1) (Vector3f. 2 3 4))
         extent (fn [axis] (set (map #(Math/abs (double (.get ^Vector3f % (int axis)))) points)))]
