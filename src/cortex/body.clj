@@ -90,20 +90,27 @@
     (HullCollisionShape. (float-array (mapcat (fn [^Vector3f p] [(.x p) (.y p) (.z p)])
                                               points)))))
 
+(defn- property
+  "The custom property `key` of segment `geom` as a non-negative finite
+  number, `default` when it has none; anything else is an error naming
+  the object."
+  [^Geometry geom ^String key default]
+  (let [v (sense/meta-data geom key)
+        owner (if (some? (.getUserData geom key)) geom (.getParent geom))]
+    (cond
+      (nil? v) (double default)
+      (and (util/finite? v) (not (neg? v))) (double v)
+      :else (throw (ex-info (str "object " (pr-str (.getName ^Spatial owner))
+                                 ": " key " must be a non-negative number, not "
+                                 (pr-str v))
+                            {:object (.getName ^Spatial owner) (keyword key) v})))))
+
 (defn mass
   "The mass Blender's designer gave `geom` (its `mass` custom property),
   1 when there is none; 0 makes the segment static. Anything but a
   finite, non-negative number is an error naming the object."
   [^Geometry geom]
-  (let [m (sense/meta-data geom "mass")
-        owner (if (some? (.getUserData geom "mass")) geom (.getParent geom))]
-    (cond
-      (nil? m) 1.0
-      (and (number? m) (Double/isFinite (double m)) (not (neg? m))) (double m)
-      :else (throw (ex-info (str "object " (pr-str (.getName ^Spatial owner))
-                                 ": mass must be a non-negative number, not "
-                                 (pr-str m))
-                            {:object (.getName ^Spatial owner) :mass m})))))
+  (property geom "mass" 1.0))
 
 (defn segments
   "The Geometries of `creature`: its segments."
@@ -283,6 +290,8 @@
              plan (if (= :box mass-properties) {:source :box} (inertia-plan geom m))]
          (.setUserData geom "cortex.body/mass" plan)
          (doto (make-body geom m plan)
+           (.setFriction (float (property geom "friction" 0.5)))
+           (.setRestitution (float (property geom "restitution" 0.0)))
            (.setSleepingThresholds (float lin) (float ang))
            (.setAngularDamping (float angular-damping))))))
    creature))

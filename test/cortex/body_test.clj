@@ -120,6 +120,20 @@
             control ^RigidBodyControl (.getControl ^Geometry (first (body/segments c)) RigidBodyControl)]
         (is (< (.distance (.getPhysicsLocation control) (Vector3f. 1 2 3)) 1e-6))))))
 
+(deftest friction-and-restitution-from-the-designer
+  (let [c (doto (creature "c" [(doto (segment "grippy" Vector3f/ZERO)
+                                 (.setUserData "friction" (float 1.2))
+                                 (.setUserData "restitution" (float 0.3)))
+                               (segment "plain" (Vector3f. 3 0 0))] [])
+            (body/physical!))
+        [g p] (map #(.getControl ^Geometry % RigidBodyControl) (body/segments c))]
+    (is (= [(float 1.2) (float 0.3)] [(.getFriction ^RigidBodyControl g) (.getRestitution ^RigidBodyControl g)]))
+    (is (= [(float 0.5) (float 0)] [(.getFriction ^RigidBodyControl p) (.getRestitution ^RigidBodyControl p)])))
+  (is (re-find #"object \"slick\": friction must be a non-negative number, not -1"
+               (try (body/physical! (creature "c" [(doto (segment "slick" Vector3f/ZERO)
+                                                     (.setUserData "friction" -1))] []))
+                    "" (catch clojure.lang.ExceptionInfo e (ex-message e))))))
+
 (deftest hull-points-carry-world-scale
   (let [points (body/mesh-points (Box. 1 1 1) (Vector3f. 2 3 4))
         extent (fn [axis] (set (map #(Math/abs (double (.get ^Vector3f % (int axis)))) points)))]
