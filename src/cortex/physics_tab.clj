@@ -8,14 +8,12 @@
   Entry points: `load-creature` (a .blend file with its Physics tab
   settings), `physics-body!` (build the bodies and joints),
   `warnings` (what could not be built as Blender would, as data),
-  `gravity` (the file's rigid body world gravity), `rigid-body` and
-  `rigid-body-constraint` (an object's settings)."
+  `world-settings` (the file's Rigid Body World) and `gravity` (its
+  gravity as a jME vector), `rigid-body` and `rigid-body-constraint`
+  (an object's settings)."
   (:require [clojure.string :as str]
             [cortex.blender :as blender]
-            [cortex.blender.file]
-            [cortex.blender.jme]
-            [cortex.blender.rigid-body]
-            [cortex.blender.scene]
+            [cortex.blender.rigid-body :as physics]
             [cortex.body :as body]
             [cortex.sense :as sense]
             [cortex.util :as util])
@@ -30,38 +28,26 @@
            (com.jme3.math Matrix3f Vector3f)
            (com.jme3.scene Geometry Mesh Node Spatial)
            (cortex FrameHingeJoint)
-           (java.util List Map)
            (java.util.logging Logger)
            (jme3tools.optimize GeometryBatchFactory)))
 
 (set! *warn-on-reflection* true)
 
-(defn- clojure-key
-  "A DNA field name as a keyword: \"lin_damping\" -> :lin-damping."
-  [k]
-  (keyword (str/replace (str k) "_" "-")))
-
-(defn- clojure-data
-  "User data (Java Maps and Lists) as Clojure data with keyword keys."
-  [v]
-  (cond (instance? Map v) (into {} (for [[k x] v] [(clojure-key k) (clojure-data x)]))
-        (instance? List v) (mapv clojure-data v)
-        :else v))
-
 (defn rigid-body
   "The Blender rigid body settings of object `spatial` (its Node, or a
-  Geometry of it) as a map with keyword keys (:type \"ACTIVE\",
-  :shape \"BOX\", :mass, :friction, :lin-damping, :kinematic ...), or
-  nil when it has none."
+  Geometry of it) as the reader made them (see
+  cortex.blender.rigid-body/rigid-body): a map with keyword keys
+  (:type \"ACTIVE\", :shape \"BOX\", :mass, :friction, :lin-damping,
+  :kinematic ...), or nil when it has none."
   [^Spatial spatial]
-  (some-> (sense/meta-data spatial "blender-rigid-body") clojure-data))
+  (sense/meta-data spatial physics/rigid-body-key))
 
 (defn rigid-body-constraint
-  "The Blender rigid body constraint of object `spatial` as a map with
-  keyword keys (:type \"HINGE\", :ob1, :ob2, :use-limit-ang-z,
-  :limit-ang-z-lower ...), or nil when it has none."
+  "The Blender rigid body constraint of object `spatial` as the reader
+  made it: a map with keyword keys (:type \"HINGE\", :ob1, :ob2,
+  :use-limit-ang-z, :limit-ang-z-lower ...), or nil when it has none."
   [^Spatial spatial]
-  (some-> (sense/meta-data spatial "blender-rigid-body-constraint") clojure-data))
+  (sense/meta-data spatial physics/constraint-key))
 
 (defn- objects-with
   "The object Nodes of `creature` that carry user data `key`."
@@ -72,13 +58,13 @@
 (defn rigid-body-objects
   "The object Nodes of `creature` that have a Blender rigid body."
   [creature]
-  (objects-with creature "blender-rigid-body"))
+  (objects-with creature physics/rigid-body-key))
 
 (defn constraint-objects
   "The object Nodes of `creature` that have a Blender rigid body
   constraint, in name order."
   [creature]
-  (sort-by #(.getName ^Spatial %) (objects-with creature "blender-rigid-body-constraint")))
+  (sort-by #(.getName ^Spatial %) (objects-with creature physics/constraint-key)))
 
 (defn- fail
   "Throw an ex-info about object `name`."
@@ -558,6 +544,10 @@
 
 (def ^:private ^Logger logger (Logger/getLogger "cortex.physics-tab"))
 
+(def ^:private warnings-key
+  "The user data under which `physics-body!` leaves its warnings."
+  "blender-physics-warnings")
+
 (defn build!
   "Give `creature` (a Node loaded from Blender) the body Blender's Physics
   tab describes: rigid bodies, then joints for its rigid body
@@ -582,49 +572,44 @@
   [^Node creature]
   (let [{:keys [warnings]} (build! creature)]
     (doseq [w warnings] (.warning logger ^String w))
-    (.setUserData creature "blender-physics-warnings" (java.util.ArrayList. ^java.util.Collection warnings))
+    (.setUserData creature ^String warnings-key (java.util.ArrayList. ^java.util.Collection warnings))
     creature))
 
 (defn warnings
   "The warnings `physics-body!` left on `creature`."
   [^Node creature]
-  (vec (.getUserData creature "blender-physics-warnings")))
+  (vec (.getUserData creature ^String warnings-key)))
+
+(defn world-settings
+  "The Rigid Body World settings of the scene `creature` was loaded
+  from, as the reader made them (see
+  cortex.blender.rigid-body/rigid-body-world: :gravity, :time-scale,
+  :steps-per-second, :num-solver-iterations, :use-split-impulse ...),
+  or nil when the file has none. The loader leaves them on the scene
+  Node: they are looked for in `creature` and below it, then in the
+  Nodes above it."
+  [^Spatial creature]
+  (or (some #(.getUserData ^Spatial % ^String physics/world-key) (util/node-seq creature))
+      (loop [^Spatial p (.getParent creature)]
+        (when p
+          (or (.getUserData p ^String physics/world-key) (recur (.getParent p)))))))
 
 (defn gravity
   "Blender's gravity for rigid body world settings `world` (see
-  cortex.blender.rigid-body/rigid-body-world): the scene's gravity times
-  the world's effector weight, in jME's axes; zero when the scene's
-  gravity is off."
+  `world-settings`): the scene's gravity times the world's effector
+  weight, in jME's axes; zero when the scene's gravity is off, and
+  Blender's default (0, -9.81, 0 in jME's axes) when `world` is nil."
   ^Vector3f [world]
-  (let [g (get world "gravity" [0.0 0.0 -9.81])
-        w (double (get world "effector_gravity" 1.0))]
-    (if (get world "use_gravity" true)
+  (let [g (get world :gravity [0.0 0.0 -9.81])
+        w (double (get world :effector-gravity 1.0))]
+    (if (get world :use-gravity true)
       (.mult (util/blender-to-jme (util/vec3 g)) (float w))
       (Vector3f.))))
 
-(defn with-physics-data!
-  "Make sure the object Nodes of `root`, loaded from the .blend file
-  `source` (a path, File or bytes), carry their Blender physics as user
-  data (see cortex.blender.rigid-body/user-data), reading the file again
-  for the objects whose Node lacks it: for scene graphs made by a loader
-  that does not attach it. Objects are matched by name. Returns root."
-  [^Node root source]
-  (let [{:keys [file]} (blender/read-blend source)
-        sc (cortex.blender.scene/current-scene file)
-        obs (if sc (cortex.blender.scene/scene-objects file sc) [])
-        data (into {} (for [ob obs
-                            :let [d (cortex.blender.rigid-body/user-data file ob)]
-                            :when (seq d)]
-                        [(cortex.blender.file/id-name ob) d]))]
-    (doseq [^Spatial n (util/node-seq root)
-            :when (and (instance? Node n) (contains? data (.getName n))
-                       (nil? (.getUserData n "blender-rigid-body"))
-                       (nil? (.getUserData n "blender-rigid-body-constraint")))]
-      (cortex.blender.jme/set-user-data! n (data (.getName n))))
-    root))
-
 (defn load-creature
-  "Load the .blend file at `path` as a creature with its Blender physics
-  data attached (see `with-physics-data!`); not yet physical."
+  "Load the .blend file at `path` as a creature, with cortex's reader,
+  which leaves every object's Blender physics on its Node (see
+  `rigid-body`, `rigid-body-constraint`) and the scene's Rigid Body
+  World on the scene Node (see `world-settings`); not yet physical."
   ^Node [path]
-  (with-physics-data! (blender/load-blender-model path) path))
+  (blender/load-blender-model path))

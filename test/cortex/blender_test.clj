@@ -382,29 +382,6 @@
         (is (not (identical? worm again)))
         (is (= 1.0 (sense/meta-data (.getChild again "worm-2") "mass")))))))
 
-(deftest concave-faces-triangulate
-  (let [l-shape [[0 0] [2 0] [2 1] [1 1] [1 2] [0 2]]
-        pts (mapv (fn [[x y]] (double-array [x y 0.0])) l-shape)
-        tris (mesh/triangulate pts)
-        area (fn [[a b c]]
-               (let [[ax ay] (l-shape a) [bx by] (l-shape b) [cx cy] (l-shape c)]
-                 (/ (- (* (- bx ax) (- cy ay)) (* (- by ay) (- cx ax))) 2.0)))]
-    (is (= 4 (count tris)))
-    (is (every? pos? (map area tris)))
-    (is (close? 3.0 (reduce + (map area tris)) 1e-9)))
-  (testing "a convex face is fanned"
-    (is (= [[0 1 2] [0 2 3] [0 3 4]]
-           (mesh/triangulate (mapv #(double-array [(Math/cos %) (Math/sin %) 0.0])
-                                   (map #(* % 2 (/ Math/PI 5)) (range 5))))))))
-
-(deftest euler-orders-compose
-  (testing "XYZ turns about X first"
-    (is (close? (m/mat-mul (m/euler->mat3 [0 0 0.3] 1) (m/euler->mat3 [0.2 0 0] 1))
-                (m/euler->mat3 [0.2 0 0.3] 1) 1e-12)))
-  (testing "a quaternion and its axis-angle agree"
-    (is (close? (m/quat->mat3 [(Math/cos 0.4) 0 (Math/sin 0.4) 0])
-                (m/axis-angle->mat3 [0 1 0] 0.8) 1e-12))))
-
 (def ^:dynamic *tmp*
   "Folder for the damaged files."
   (doto (.toFile (Files/createTempDirectory "cortex-blend" (make-array java.nio.file.attribute.FileAttribute 0)))
@@ -521,11 +498,6 @@
                   (:addr (file/fget (file/fget mc "gobject") "first")))
         (is (instance? Node (blender/load-blender-model
                              (str (write-tmp "cyclic-list.blend" bad)))))))))
-
-(deftest one-change-of-axes
-  (is (= m/y-up
-         (let [^com.jme3.math.Matrix3f a util/blender-axes]
-           (vec (for [i (range 3)] (vec (for [j (range 3)] (double (.get a i j))))))))))
 
 (defn hot-ranges
   "[start end] byte ranges worth damaging in a valid file: every block

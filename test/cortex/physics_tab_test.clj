@@ -82,18 +82,21 @@
     (= a b)))
 
 (def body-names
-  "Blender's Python names of rigid body settings -> the DNA names the
-  reader keeps."
-  {"type" "type" "kinematic" "kinematic" "mass" "mass" "collision_shape" "shape"
-   "friction" "friction" "restitution" "restitution" "use_margin" "use_margin"
-   "collision_margin" "margin" "linear_damping" "lin_damping"
-   "angular_damping" "ang_damping" "use_deactivation" "use_deactivation"
-   "use_start_deactivated" "use_start_deactivated"
-   "deactivate_linear_velocity" "lin_sleep_thresh"
-   "deactivate_angular_velocity" "ang_sleep_thresh"})
+  "Blender's Python names of rigid body settings -> the keys (DNA names,
+  as keywords) the reader keeps them under."
+  {"type" :type "kinematic" :kinematic "mass" :mass "collision_shape" :shape
+   "friction" :friction "restitution" :restitution "use_margin" :use-margin
+   "collision_margin" :margin "linear_damping" :lin-damping
+   "angular_damping" :ang-damping "use_deactivation" :use-deactivation
+   "use_start_deactivated" :use-start-deactivated
+   "deactivate_linear_velocity" :lin-sleep-thresh
+   "deactivate_angular_velocity" :ang-sleep-thresh})
 
 (def constraint-renames
-  {"object1" "ob1" "object2" "ob2" "solver_iterations" "num_solver_iterations"})
+  "Blender's Python names of constraint settings whose DNA names differ
+  -> the keys the reader keeps them under; every other Python name is
+  its DNA name."
+  {"object1" :ob1 "object2" :ob2 "solver_iterations" :num-solver-iterations})
 
 (deftest reads-what-blender-says
   (doseq [v versions]
@@ -110,20 +113,20 @@
             (is (= (some? (get t "rigid_body")) (some? rb)))
             (is (= (some? (get t "rigid_body_constraint")) (some? rbc)))
             (when-let [trb (get t "rigid_body")]
-              (is (= (get trb "enabled") (not (get rb "disabled"))))
-              (doseq [[k dna] body-names]
-                (is (same? (get trb k) (get rb dna)) k)))
+              (is (= (get trb "enabled") (not (:disabled rb))))
+              (doseq [[k key] body-names]
+                (is (same? (get trb k) (get rb key)) k)))
             (when-let [trbc (get t "rigid_body_constraint")]
               (doseq [[k x] trbc]
-                (is (same? x (get rbc (get constraint-renames k k))) k)))))
+                (is (same? x (get rbc (get constraint-renames k (physics/dna-key k)))) k)))))
         (let [w (physics/rigid-body-world bf sc)
               tw (get o "rigid_body_world")]
-          (is (same? (get tw "time_scale") (get w "time_scale")))
-          (is (same? (get tw "solver_iterations") (get w "num_solver_iterations")))
-          (is (same? (get tw "substeps_per_frame") (get w "steps_per_second")))
-          (is (same? (get tw "effector_gravity") (get w "effector_gravity")))
-          (is (every? true? (map same? (get o "gravity") (get w "gravity"))))
-          (is (= (get o "use_gravity") (get w "use_gravity")))
+          (is (same? (get tw "time_scale") (:time-scale w)))
+          (is (same? (get tw "solver_iterations") (:num-solver-iterations w)))
+          (is (same? (get tw "substeps_per_frame") (:steps-per-second w)))
+          (is (same? (get tw "effector_gravity") (:effector-gravity w)))
+          (is (every? true? (map same? (get o "gravity") (:gravity w))))
+          (is (= (get o "use_gravity") (:use-gravity w)))
           (is (every? true? (map same? [0 -9.81 0] (let [g (bp/gravity w)] [(.x g) (.y g) (.z g)])))))))))
 
 (defn by-name [^Node root name]
@@ -133,13 +136,30 @@
   (.getControl (bp/body-spatial (by-name root name)) RigidBodyControl))
 
 (deftest the-loader-attaches-physics
-  (let [root (blender/load-blender-model (fixture "b50"))]
+  (let [^Node root (blender/load-blender-model (fixture "b50"))]
     (is (= "HINGE" (:type (bp/rigid-body-constraint (by-name root "hinge-joint")))))
     (is (= ["hinge-a" "hinge-b"] ((juxt :ob1 :ob2) (bp/rigid-body-constraint (by-name root "hinge-joint")))))
     (is (= "MESH" (:shape (bp/rigid-body (by-name root "hinge-b")))))
     (is (nil? (bp/rigid-body (by-name root "seg-1"))))
     (testing "a Geometry answers for its object"
-      (is (= "ACTIVE" (:type (bp/rigid-body (bp/body-spatial (by-name root "ball")))))))))
+      (is (= "ACTIVE" (:type (bp/rigid-body (bp/body-spatial (by-name root "ball")))))))
+    (testing "the settings are the reader's own data, unconverted"
+      (let [{:keys [file scene-data]} (blender/read-blend (fixture "b50"))
+            ob (some #(when (= "hinge-joint" (file/id-name %)) %)
+                     (scene/scene-objects file (scene/current-scene file)))]
+        (is (= (physics/rigid-body-constraint file ob)
+               (bp/rigid-body-constraint (by-name root "hinge-joint"))))
+        (is (= (:rigid-body-world scene-data) (bp/world-settings root)))))
+    (testing "the scene's Rigid Body World is found from the root and from any object"
+      (is (= 10 (:steps-per-second (bp/world-settings root))))
+      (is (identical? (bp/world-settings root) (bp/world-settings (by-name root "ball"))))
+      (let [g (bp/gravity (bp/world-settings root))]
+        (is (every? true? (map same? [0 -9.81 0] [(.x g) (.y g) (.z g)])))))
+    (testing "clones share the settings, which cannot change"
+      (doseq [^Node copy [(.clone root false) (.deepClone root)]]
+        (is (identical? (bp/rigid-body (by-name root "hinge-b"))
+                        (bp/rigid-body (by-name copy "hinge-b"))))
+        (is (= (bp/world-settings root) (bp/world-settings copy)))))))
 
 (def joint-classes
   {"FIXED" SixDofJoint "POINT" SixDofJoint "GENERIC" SixDofJoint "GENERIC_SPRING" SixDofJoint
@@ -338,11 +358,10 @@
 
 (defn- edit!
   "Change the Blender physics data `key` of object `name` in `creature`
-  with (f settings), settings a Clojure map with String keys."
-  [creature name key f]
-  (let [^Node n (by-name creature name)
-        m (into {} (.getUserData n key))]
-    (.setUserData n key (java.util.HashMap. ^java.util.Map (f m)))
+  with (f settings), settings the reader's map with keyword keys."
+  [creature name ^String key f]
+  (let [^Node n (by-name creature name)]
+    (.setUserData n key (f (.getUserData n key)))
     creature))
 
 (defn- build-error
@@ -354,35 +373,35 @@
 
 (deftest bad-constraints-are-named-errors
   (let [fresh #(bp/load-creature (fixture "b50"))
-        con "blender-rigid-body-constraint"
-        rb "blender-rigid-body"]
+        con physics/constraint-key
+        rb physics/rigid-body-key]
     (is (re-find #"\"point-joint\".*second object \(ob2\) \"nobody\" is not a rigid body"
-                 (build-error (edit! (fresh) "point-joint" con #(assoc % "ob2" "nobody")))))
+                 (build-error (edit! (fresh) "point-joint" con #(assoc % :ob2 "nobody")))))
     (is (re-find #"\"hinge-joint\".*first object \(ob1\) is not set"
-                 (build-error (edit! (fresh) "hinge-joint" con #(dissoc % "ob1")))))
+                 (build-error (edit! (fresh) "hinge-joint" con #(dissoc % :ob1)))))
     (is (re-find #"\"slider-joint\".*jBullet cannot build constraint type \"UNKNOWN\" \(code 4\)"
-                 (build-error (edit! (fresh) "slider-joint" con #(assoc % "type" "UNKNOWN" "type_code" 4)))))
+                 (build-error (edit! (fresh) "slider-joint" con #(assoc % :type "UNKNOWN" :type-code 4)))))
     (is (re-find #"\"fixed-joint\".*joins \"fixed-a\" to itself"
-                 (build-error (edit! (fresh) "fixed-joint" con #(assoc % "ob2" "fixed-a")))))
+                 (build-error (edit! (fresh) "fixed-joint" con #(assoc % :ob2 "fixed-a")))))
     (is (re-find #"\"generic-joint\".*limit_ang_z_upper must be a finite number"
-                 (build-error (edit! (fresh) "generic-joint" con #(assoc % "limit_ang_z_upper" Float/NaN)))))
+                 (build-error (edit! (fresh) "generic-joint" con #(assoc % :limit-ang-z-upper Float/NaN)))))
     (is (re-find #"rigid body \"point-b\".*mass must be a finite number, not \"heavy\""
-                 (build-error (edit! (fresh) "point-b" rb #(assoc % "mass" "heavy")))))
+                 (build-error (edit! (fresh) "point-b" rb #(assoc % :mass "heavy")))))
     (is (re-find #"rigid body \"ball\".*mass must not be negative"
-                 (build-error (edit! (fresh) "ball" rb #(assoc % "mass" (float -1))))))
+                 (build-error (edit! (fresh) "ball" rb #(assoc % :mass (float -1))))))
     (is (re-find #"rigid body \"ball\".*unknown collision shape"
-                 (build-error (edit! (fresh) "ball" rb #(assoc % "shape" "UNKNOWN" "shape_code" 9)))))
+                 (build-error (edit! (fresh) "ball" rb #(assoc % :shape "UNKNOWN" :shape-code 9)))))
     (testing "a disabled constraint makes no joint, and says so"
-      (let [{:keys [joints warnings]} (bp/build! (edit! (fresh) "point-joint" con #(assoc % "enabled" false)))]
+      (let [{:keys [joints warnings]} (bp/build! (edit! (fresh) "point-joint" con #(assoc % :enabled false)))]
         (is (nil? (:joint (first (filter #(= "point-joint" (:object %)) joints)))))
         (is (some #(re-find #"point-joint.*disabled" %) warnings))))
     (testing "any one number made NaN, infinite or huge ends in a joint or a named error"
-      (doseq [[obj k x] [["hinge-joint" "limit_ang_z_lower" Float/NaN]
-                         ["spring-joint" "spring_stiffness_z" Float/POSITIVE_INFINITY]
-                         ["motor-joint" "motor_ang_target_velocity" (float 1e30)]
-                         ["slider-b" "friction" Float/NaN]
-                         ["piston-b" "lin_damping" (float 1e30)]
-                         ["spring-b" "margin" Float/NEGATIVE_INFINITY]]]
+      (doseq [[obj k x] [["hinge-joint" :limit-ang-z-lower Float/NaN]
+                         ["spring-joint" :spring-stiffness-z Float/POSITIVE_INFINITY]
+                         ["motor-joint" :motor-ang-target-velocity (float 1e30)]
+                         ["slider-b" :friction Float/NaN]
+                         ["piston-b" :lin-damping (float 1e30)]
+                         ["spring-b" :margin Float/NEGATIVE_INFINITY]]]
         (let [key (if (re-find #"joint" obj) con rb)
               result (build-error (edit! (fresh) obj key #(assoc % k x)))]
           (is (or (= :no-error result) (re-find (re-pattern (str "\"" obj "\"")) result))

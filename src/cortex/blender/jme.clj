@@ -8,6 +8,7 @@
   `set-user-data!`."
   (:require [cortex.blender.math :as m]
             [cortex.blender.mesh :as mesh]
+            [cortex.blender.rigid-body :as physics]
             [cortex.util :as util :refer [vec3]])
   (:import [com.jme3.scene Node Geometry Mesh VertexBuffer$Type Spatial]
            [com.jme3.math Vector3f Quaternion Matrix3f ColorRGBA Transform]
@@ -86,6 +87,14 @@
           :let [u (user-value v)]
           :when (some? u)]
     (.setUserData s (str k) u))
+  s)
+
+(defn- keep-user-data!
+  "Store each of `data` (user data name -> Clojure value) on spatial
+  `s` as it is (see cortex.blender.rigid-body for the names)."
+  [^Spatial s data]
+  (doseq [[k v] data :when (some? v)]
+    (.setUserData s ^String k v))
   s)
 
 (defn material
@@ -245,11 +254,14 @@
   matrix in Y-up. Mesh objects get Geometry children; custom
   properties become user data, plus \"blender-type\" (MESH, EMPTY,
   LIGHT, CAMERA, ...) unless a property of that name exists, plus the
-  object's Blender physics (see cortex.blender.rigid-body/user-data).
+  object's Blender physics (see cortex.blender.rigid-body/user-data),
+  as it is. The scene Node carries the scene's Rigid Body World, when
+  it has one, as user data cortex.blender.rigid-body/world-key.
   Materials are made with asset manager `am` (none when nil)."
   ^Node [am root-name sd]
   (let [root (Node. (str root-name))
-        scene (Node. (str (:scene sd)))
+        scene (keep-user-data! (Node. (str (:scene sd)))
+                               {physics/world-key (:rigid-body-world sd)})
         objects (:objects sd)
         trs (into {} (map (fn [o] [(:key o) (world-trs (:world o))])) objects)
         xf (into {} (map (fn [[k t]] [k (trs->transform t)])) trs)
@@ -257,7 +269,7 @@
                          [(:key o)
                           (let [n (Node. (str (:name o)))]
                             (set-user-data! n (:properties o))
-                            (set-user-data! n (:physics o))
+                            (keep-user-data! n (:physics o))
                             (when-not (contains? (:properties o) "blender-type")
                               (.setUserData n "blender-type" (str (:type o))))
                             n)]))]

@@ -2,15 +2,34 @@
   "Blender's own rigid body physics as data: the settings of the Physics
   tab's Rigid Body (RigidBodyOb), Rigid Body Constraint (RigidBodyCon)
   and the scene's Rigid Body World, read through the file's SDNA by
-  field name. Codes and flags are those of Blender's
+  field name, as maps with keyword keys (:lin-damping,
+  :use-limit-ang-z, :ob1 ...). Codes and flags are those of Blender's
   DNA_rigidbody_types.h.
 
   Entry points: `rigid-body`, `rigid-body-constraint`,
   `rigid-body-world` (an object's or scene's settings as data),
-  `user-data` (what the loader attaches to an object's Node)."
-  (:require [cortex.blender.file :as f]))
+  `user-data` (what the loader attaches to an object's Node), and the
+  names of that user data: `rigid-body-key`, `constraint-key`,
+  `world-key`."
+  (:require [clojure.string :as str]
+            [cortex.blender.file :as f]))
 
 (set! *warn-on-reflection* true)
+
+(def rigid-body-key
+  "The user data under which an object's Node carries its rigid body
+  settings (see `rigid-body`)."
+  "blender-rigid-body")
+
+(def constraint-key
+  "The user data under which an object's Node carries its rigid body
+  constraint (see `rigid-body-constraint`)."
+  "blender-rigid-body-constraint")
+
+(def world-key
+  "The user data under which the scene's Node carries its Rigid Body
+  World (see `rigid-body-world`)."
+  "blender-rigid-body-world")
 
 (def body-types
   "eRigidBodyOb_Type: what part a rigid body plays."
@@ -24,9 +43,9 @@
 
 (def body-flags
   "The bits of eRigidBodyOb_Flag a body needs, by their Python names.
-  \"disabled\" is the inverse of the Physics tab's Dynamic checkbox."
-  {"kinematic" 0 "use_deactivation" 3 "use_start_deactivated" 4
-   "disabled" 5 "use_margin" 6 "use_deform" 7})
+  :disabled is the inverse of the Physics tab's Dynamic checkbox."
+  {:kinematic 0 :use-deactivation 3 :use-start-deactivated 4
+   :disabled 5 :use-margin 6 :use-deform 7})
 
 (def constraint-types
   "eRigidBodyCon_Type; codes 2, 4, 7 and 10 are unused by Blender."
@@ -39,13 +58,13 @@
 
 (def constraint-flags
   "The bits of eRigidBodyCon_Flag, by their Python names."
-  (merge {"enabled" 0 "disable_collisions" 2 "use_breaking" 3
-          "use_override_solver_iterations" 4
-          "use_limit_lin_x" 5 "use_limit_lin_y" 6 "use_limit_lin_z" 7
-          "use_limit_ang_x" 8 "use_limit_ang_y" 9 "use_limit_ang_z" 10
-          "use_spring_x" 11 "use_spring_y" 12 "use_spring_z" 13
-          "use_motor_lin" 14 "use_motor_ang" 15
-          "use_spring_ang_x" 16 "use_spring_ang_y" 17 "use_spring_ang_z" 18}))
+  {:enabled 0 :disable-collisions 2 :use-breaking 3
+   :use-override-solver-iterations 4
+   :use-limit-lin-x 5 :use-limit-lin-y 6 :use-limit-lin-z 7
+   :use-limit-ang-x 8 :use-limit-ang-y 9 :use-limit-ang-z 10
+   :use-spring-x 11 :use-spring-y 12 :use-spring-z 13
+   :use-motor-lin 14 :use-motor-ang 15
+   :use-spring-ang-x 16 :use-spring-ang-y 17 :use-spring-ang-z 18})
 
 (def body-fields
   "The RigidBodyOb number fields kept, by their DNA names."
@@ -63,17 +82,24 @@
                 a ["x" "y" "z" "ang_x" "ang_y" "ang_z"]]
             (str p a))))
 
+(defn dna-key
+  "The key a DNA field name has in the settings maps: \"lin_damping\"
+  -> :lin-damping."
+  [dna-name]
+  (keyword (str/replace dna-name "_" "-")))
+
 (defn- numbers
-  "The fields `names` that struct `r` has, name -> value."
+  "The fields `names` (DNA names) that struct `r` has, as `dna-key`
+  -> value."
   [r names]
   (into {} (for [n names
                  :when (f/has-field? r n)
                  :let [v (f/fget r n)]
                  :when (number? v)]
-             [n v])))
+             [(dna-key n) v])))
 
 (defn flag-bits
-  "Each name of `bits` (name -> bit number) with whether `flag` has
+  "Each key of `bits` (key -> bit number) with whether `flag` has
   that bit set."
   [flag bits]
   (into {} (for [[k b] bits] [k (bit-test (long flag) (long b))])))
@@ -85,11 +111,12 @@
   (get table (some-> c long) "UNKNOWN"))
 
 (defn rigid-body
-  "The rigid body settings of Object struct `ob` as a map with String
-  keys (so that jME can keep it as user data), or nil when the object
-  has no rigid body. \"type\" and \"shape\" are names, \"type_code\"
-  and \"shape_code\" the numbers the file holds, \"flag\" the raw
-  flags, decoded into \"kinematic\", \"disabled\", \"use_margin\"..."
+  "The rigid body settings of Object struct `ob` as a map with keyword
+  keys, or nil when the object has no rigid body. :type and :shape are
+  names (\"ACTIVE\", \"BOX\"), :type-code and :shape-code the numbers
+  the file holds, :flag the raw flags, decoded into :kinematic,
+  :disabled, :use-margin...; :mass, :friction, :lin-damping and the
+  other numbers by their DNA names."
   [bf ob]
   (when-let [rb (f/deref-ptr bf (f/fget ob "rigidbody_object") "RigidBodyOb")]
     (let [flag (long (or (f/fget rb "flag") 0))
@@ -97,9 +124,9 @@
           shape (f/fget rb "shape")]
       (merge (numbers rb body-fields)
              (flag-bits flag body-flags)
-             {"type" (code-name body-types type) "type_code" (or type -1)
-              "shape" (code-name shapes shape) "shape_code" (or shape -1)
-              "flag" flag}))))
+             {:type (code-name body-types type) :type-code (or type -1)
+              :shape (code-name shapes shape) :shape-code (or shape -1)
+              :flag flag}))))
 
 (defn- object-name
   "The name of the Object pointer `ptr` points at, or nil."
@@ -107,12 +134,13 @@
   (some-> (f/deref-ptr bf ptr "Object") f/id-name))
 
 (defn rigid-body-constraint
-  "The rigid body constraint of Object struct `ob` as a map with String
-  keys, or nil when it has none: \"type\" (a name) and \"type_code\",
-  \"ob1\" and \"ob2\" (the names of the objects it joins; absent when
-  the pointer is empty or dangling), \"spring_type\", the raw \"flag\"
-  and its bits (\"enabled\", \"disable_collisions\", \"use_limit_ang_z\"...),
-  and every limit, spring, motor and breaking number by its DNA name."
+  "The rigid body constraint of Object struct `ob` as a map with
+  keyword keys, or nil when it has none: :type (a name) and
+  :type-code, :ob1 and :ob2 (the names of the objects it joins; absent
+  when the pointer is empty or dangling), :spring-type, the raw :flag
+  and its bits (:enabled, :disable-collisions, :use-limit-ang-z...),
+  and every limit, spring, motor and breaking number by its DNA name
+  (:limit-ang-z-lower, :spring-stiffness-x ...)."
   [bf ob]
   (when-let [rbc (f/deref-ptr bf (f/fget ob "rigidbody_constraint") "RigidBodyCon")]
     (let [flag (long (or (f/fget rbc "flag") 0))
@@ -121,30 +149,32 @@
           ob2 (object-name bf (f/fget rbc "ob2"))]
       (cond-> (merge (numbers rbc constraint-fields)
                      (flag-bits flag constraint-flags)
-                     {"type" (code-name constraint-types type) "type_code" (or type -1)
-                      "spring_type" (code-name spring-types (f/fget rbc "spring_type"))
-                      "flag" flag})
-        ob1 (assoc "ob1" ob1)
-        ob2 (assoc "ob2" ob2)))))
+                     {:type (code-name constraint-types type) :type-code (or type -1)
+                      :spring-type (code-name spring-types (f/fget rbc "spring_type"))
+                      :flag flag})
+        ob1 (assoc :ob1 ob1)
+        ob2 (assoc :ob2 ob2)))))
 
 (defn user-data
-  "What an object's Node carries of Blender's physics: user data
-  \"blender-rigid-body\" and \"blender-rigid-body-constraint\", each
-  present only when the object has one."
+  "What an object's Node carries of Blender's physics, by user data
+  name: its `rigid-body` under `rigid-body-key` and its
+  `rigid-body-constraint` under `constraint-key`, each present only
+  when the object has one."
   [bf ob]
   (let [rb (rigid-body bf ob)
         rbc (rigid-body-constraint bf ob)]
     (cond-> {}
-      rb (assoc "blender-rigid-body" rb)
-      rbc (assoc "blender-rigid-body-constraint" rbc))))
+      rb (assoc rigid-body-key rb)
+      rbc (assoc constraint-key rbc))))
 
 (defn rigid-body-world
-  "The Rigid Body World of Scene struct `sc`, or nil when it has none:
-  \"time_scale\", \"substeps_per_frame\" (older files: \"steps_per_second\"),
-  \"num_solver_iterations\", \"flag\" with \"muted\" and
-  \"use_split_impulse\", and \"effector_gravity\" (how much of the
-  scene's gravity its bodies feel); and the scene's own \"gravity\"
-  (Blender axes) and \"use_gravity\"."
+  "The Rigid Body World of Scene struct `sc` as a map with keyword
+  keys, or nil when it has none: :time-scale, :steps-per-second (the
+  substeps per frame; files that use the newer DNA name:
+  :substeps-per-frame), :num-solver-iterations, :flag with :muted and
+  :use-split-impulse, and :effector-gravity (how much of the scene's
+  gravity its bodies feel); and the scene's own :gravity (Blender axes)
+  and :use-gravity."
   [bf sc]
   (when-let [w (f/deref-ptr bf (f/fget sc "rigidbody_world") "RigidBodyWorld")]
     (let [flag (long (or (f/fget w "flag") 0))
@@ -152,10 +182,10 @@
           phys (f/fget sc "physics_settings")]
       (merge (numbers w ["time_scale" "substeps_per_frame" "steps_per_second"
                          "num_solver_iterations"])
-             {"flag" flag
-              "muted" (bit-test flag 0)
-              "use_split_impulse" (bit-test flag 2)
-              "effector_gravity" (or (f/fget ew "global_gravity") 1.0)}
+             {:flag flag
+              :muted (bit-test flag 0)
+              :use-split-impulse (bit-test flag 2)
+              :effector-gravity (or (f/fget ew "global_gravity") 1.0)}
              (when-let [g (f/fget phys "gravity")]
-               {"gravity" g
-                "use_gravity" (bit-test (long (or (f/fget phys "flag") 1)) 0)})))))
+               {:gravity g
+                :use-gravity (bit-test (long (or (f/fget phys "flag") 1)) 0)})))))

@@ -348,12 +348,15 @@
     (mapv #(assoc % :parent-key (parent (:key %))) infos)))
 
 (defn scene-data
-  "The scene of parsed file `bf` as data: {:scene name, :objects [...]},
-  each object with :name, :type, :parent (the parent's name, even when
-  the parent is not in the scene), :parent-key (the parent's key when it
-  is in the scene), :world (4x4 rows, Blender coordinates), :mesh (mesh
-  data or nil), :materials, :properties and more. Objects are those of the current scene; a
-  file whose scene lists none gives every object it holds."
+  "The scene of parsed file `bf` as data: {:scene name, :objects [...],
+  :rigid-body-world settings}, each object with :name, :type, :parent
+  (the parent's name, even when the parent is not in the scene),
+  :parent-key (the parent's key when it is in the scene), :world (4x4
+  rows, Blender coordinates), :mesh (mesh data or nil), :materials,
+  :properties, :physics and more; :rigid-body-world is the scene's
+  (see cortex.blender.rigid-body/rigid-body-world), nil when it has
+  none. Objects are those of the current scene; a file whose scene
+  lists none gives every object it holds."
   [bf]
   (let [sc (current-scene bf)
         obs (when sc (scene-objects bf sc))
@@ -367,6 +370,7 @@
         keys (set (map :key infos))
         names (into {} (map (juxt :key :name)) all)]
     {:scene (if sc (f/id-name sc) "Scene")
+     :rigid-body-world (when sc (physics/rigid-body-world bf sc))
      :objects (mapv (fn [{:keys [parent-key mesh-ref] :as o}]
                       (-> o
                           (assoc :world (worlds (:key o))
