@@ -748,6 +748,14 @@
   ^Vector3f [^PhysicsRigidBody body ^Vector3f local-point]
   (.add (.getPhysicsLocation body) (.mult (.getPhysicsRotation body) local-point)))
 
+(defn joint-gap
+  "How far apart the two ends of `joint` (a jBullet PhysicsJoint) are in
+  the world now: each end is the joint's pivot carried by its own body.
+  A joint that holds keeps it near zero."
+  ^double [^PhysicsJoint joint]
+  (.distance (pivot-in-world (.getBodyA joint) (.getPivotA joint))
+             (pivot-in-world (.getBodyB joint) (.getPivotB joint))))
+
 (defn connect
   "Join the physical segments `obj-a` and `obj-b` where the empty `joint`
   is, with the joint its `joint` property describes, for example

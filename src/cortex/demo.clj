@@ -161,10 +161,6 @@
                    (util/display-dilated-time w (.getTimer w)))
                  update-fn)))
 
-(defn- joint-gap ^double [^PhysicsJoint j]
-  (.distance (body/pivot-in-world (.getBodyA j) (.getPivotA j))
-             (body/pivot-in-world (.getBodyB j) (.getPivotB j))))
-
 (defn watch
   "A function of [world tpf] for cortex.world/world's update that
   measures `creature` (built by body!) every frame, and an atom holding
@@ -174,7 +170,7 @@
         controls (mapv #(.getControl ^Geometry % RigidBodyControl) (body/segments creature))
         seen (atom {:frames 0 :max-gap 0.0 :still-since nil})]
     [(fn [_ _]
-       (let [gap (reduce max 0.0 (map joint-gap joints))
+       (let [gap (reduce max 0.0 (map body/joint-gap joints))
              fastest (reduce max 0.0 (map #(.length (.getLinearVelocity ^RigidBodyControl %))
                                           controls))]
          (swap! seen (fn [{:keys [frames] :as s}]

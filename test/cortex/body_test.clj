@@ -249,12 +249,6 @@
 
 (defn- floor [] (util/box 20 1 20 :position (Vector3f. 0 -1 0) :mass 0 :name "floor"))
 
-(defn- joint-gap
-  "How far apart the two ends of `joint` are in the world."
-  [^PhysicsJoint joint]
-  (.distance (body/pivot-in-world (.getBodyA joint) (.getPivotA joint))
-             (body/pivot-in-world (.getBodyB joint) (.getPivotB joint))))
-
 (defn- all-joints [creature]
   (distinct (mapcat #(.getJoints ^RigidBodyControl (.getControl ^Geometry % RigidBodyControl))
                     (body/segments creature))))
@@ -266,7 +260,7 @@
   (let [worst (atom 0.0)
         w (world/world (util/nodify [creature (floor)]) {} setup
                        (fn [_ _] (doseq [j (all-joints creature)]
-                                   (swap! worst max (joint-gap j)))))]
+                                   (swap! worst max (body/joint-gap j)))))]
     (world/run-world! w frames)
     @worst))
 

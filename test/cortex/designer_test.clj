@@ -103,10 +103,6 @@
   (let [^RigidBodyControl c (.getControl g RigidBodyControl)]
     (.length (.getLinearVelocity c))))
 
-(defn- joint-gap ^double [^PhysicsJoint j]
-  (.distance (body/pivot-in-world (.getBodyA j) (.getPivotA j))
-             (body/pivot-in-world (.getBodyB j) (.getPivotB j))))
-
 (defn- drop-test
   "Drop `creature` (built) half a unit above a floor at y = 0 (its lowest
   point) for 10 s; return when every segment stayed slower than 0.05
@@ -130,7 +126,7 @@
                        (fn [_ _]
                          (let [f (swap! frame inc)
                                fastest (apply max (map speed segs))]
-                           (swap! gap max (apply max 0.0 (map joint-gap joints)))
+                           (swap! gap max (apply max 0.0 (map body/joint-gap joints)))
                            (if (< fastest 0.05)
                              (swap! still-since #(or % f))
                              (reset! still-since nil))
