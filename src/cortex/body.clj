@@ -72,6 +72,18 @@
           (for [^Vector3f d (sphere-directions limit)]
             (apply max-key #(.dot d ^Vector3f %) points))))))
 
+(def ^:private hull-lock
+  "Held while jBullet builds a hull: see above."
+  (Object.))
+
+(defn hull-from-points
+  "A convex hull collision shape around `points` (Vector3fs), made under
+  the lock that keeps jBullet's hull building correct on many threads."
+  ^HullCollisionShape [points]
+  (let [coords (float-array (mapcat (fn [^Vector3f p] [(.x p) (.y p) (.z p)]) points))]
+    (locking hull-lock
+      (HullCollisionShape. coords))))
+
 (defn- hull-shape
   "A convex hull collision shape for `geom`: its mesh at the geometry's
   world scale (a rigid body has no scale of its own), simplified to at
@@ -87,8 +99,7 @@
       (throw (ex-info (str "segment " (pr-str (.getName geom)) " has " (count points)
                            " distinct vertices; a solid needs at least 4")
                       {:object (.getName geom) :vertices (count points)})))
-    (HullCollisionShape. (float-array (mapcat (fn [^Vector3f p] [(.x p) (.y p) (.z p)])
-                                              points)))))
+    (hull-from-points points)))
 
 (defn- property
   "The custom property `key` of segment `geom` as a non-negative finite

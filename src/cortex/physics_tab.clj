@@ -159,8 +159,7 @@
             (fail "rigid body" name "its mesh has no vertices" {}))
         half (mapv tiny (half-extents points))
         settings (shape-settings (:shape rb) half)
-        hull #(HullCollisionShape. (float-array (mapcat (fn [^Vector3f p] [(.x p) (.y p) (.z p)])
-                                                        (body/simplify-hull points body/max-hull-points))))
+        hull #(body/hull-from-points (body/simplify-hull points body/max-hull-points))
         margin (:margin rb)
         use-margin? (or (:use-margin rb) (#{"CONVEX_HULL" "MESH" "CONE"} (:shape rb)))
         [shape warnings]

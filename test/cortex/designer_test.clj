@@ -99,6 +99,32 @@
     (let [{:keys [warnings]} (body/report (body/body! (load-fixture "overlap.blend")))]
       (is (= [[:overlap ["rock" "torso"]]] (map (juxt :kind :segments) warnings))))))
 
+(defn- hand-run
+  "Load the hand, turned by `angle`, build it (once `start`, a latch,
+  opens: so that parallel builds overlap) and drop it for 2 s; the final
+  positions and rotations of its segments."
+  [angle ^java.util.concurrent.CountDownLatch start]
+  (let [c (doto ^Node (util/load-blender-model "Models/test-creature/hand.blend")
+            (.rotate 0.2 (float angle) 0.1))
+        _ (.countDown start)
+        _ (.await start)
+        _ (body/body! c)
+        floor (util/box 20 1 20 :position (Vector3f. 0 -3 0) :mass 0)
+        w (world/world (util/nodify [c floor]) {} #(world/set-gravity % (Vector3f. 0 -9.81 0))
+                       world/no-op)]
+    (world/run-world! w 120)
+    (vec (for [^Geometry g (body/segments c)
+               :let [[p q] (body/segment-pose g)]]
+           [(.x ^Vector3f p) (.y ^Vector3f p) (.z ^Vector3f p)
+            (.getX ^com.jme3.math.Quaternion q) (.getW ^com.jme3.math.Quaternion q)]))))
+
+(deftest bodies-built-on-many-threads-are-the-same
+  (let [angles (map #(* 0.4 %) (range 8))
+        alone (mapv #(hand-run % (java.util.concurrent.CountDownLatch. 0)) angles)
+        start (java.util.concurrent.CountDownLatch. (count angles))
+        together (mapv deref (mapv #(future (hand-run % start)) angles))]
+    (is (= alone together))))
+
 (defn- speed ^double [^Geometry g]
   (let [^RigidBodyControl c (.getControl g RigidBodyControl)]
     (.length (.getLinearVelocity c))))
