@@ -9,6 +9,7 @@
             [cortex.bench.creatures :as creatures]
             [cortex.blender-bench :as blender-bench]
             [cortex.body :as body]
+            [cortex.sim :as sim]
             [cortex.util :as util]
             [cortex.world :as world])
   (:import (com.jme3.bounding BoundingBox)
@@ -254,6 +255,51 @@
        :frames frames :runs runs
        :same? (every? (fn [[a b]] (= (:states a) (:states b))) pairs)})))
 
+(defn step-loop-run!
+  "Build a creature from `make` and step it `frames` times by 1/fps s
+  over a floor one unit below it: in bare Bullet when `observe` is nil,
+  else in a cortex.sim simulation observing `observe`. Returns the
+  :stamps of the steps and the bodies' final :states."
+  [make frames observe]
+  (let [creature (doto ^Node (make) (body/body!))
+        ^Geometry under (floor-under creature)
+        height (+ (.y (.getWorldTranslation under)) 0.5)
+        stamps (object-array frames)
+        step (float (/ 1 fps))]
+    (if observe
+      (let [s (sim/simulation creature {:floor height :observe observe})]
+        (dotimes [i frames] (aset stamps i (stamp)) (sim/step! s))
+        (sim/destroy! s))
+      (let [space (bare-space)]
+        (.addAll space (util/nodify [creature (sim/floor height)]))
+        (.setGravity space earth)
+        (doseq [^PhysicsRigidBody b (.getRigidBodyList space)]
+          (.setGravity b earth)
+          (.activate b))
+        (dotimes [i frames]
+          (aset stamps i (stamp))
+          (.update space step)
+          (.distributeEvents space))
+        (.destroy space)))
+    {:stamps (vec stamps) :states (body-states creature)}))
+
+(defn measure-step-loop!
+  "Median simulated seconds per CPU second of bare Bullet (:bare-cpu),
+  of cortex.sim observing nothing (:none-cpu) and everything
+  (:all-cpu), their ratios to bare, and :same? when all three computed
+  the same motion; `runs` rounds of `frames` frames after a warm-up."
+  [make {:keys [frames runs]}]
+  (let [kinds [nil #{} sim/all-observations]
+        one! (fn [observe] (settle!) (step-loop-run! make frames observe))]
+    (run! one! kinds)
+    (let [rounds (vec (repeatedly runs #(mapv one! kinds)))
+          speed (fn [i] (median (map #(throughput (:stamps (nth % i)) 1) rounds)))
+          [bare none all] (map speed [0 1 2])]
+      {:bare-cpu bare :none-cpu none :all-cpu all
+       :none-ratio (/ none bare) :all-ratio (/ all bare)
+       :frames frames :runs runs
+       :same? (every? #(apply = (map :states %)) rounds)})))
+
 (defn- heap-used
   "Bytes of heap in use now, garbage included."
   ^long []
@@ -305,10 +351,12 @@
   {:full {:build {:sizes [10 100 300 1000] :warmup 2 :runs 7}
           :sim {:sizes [10 100 300] :frames 300 :runs 3}
           :heap {:size 1000 :frames 120}
+          :step-loop {:frames 600 :runs 5}
           :blender-load-runs 11}
    :quick {:build {:sizes [10 100 300] :warmup 1 :runs 3}
            :sim {:sizes [10 100] :frames 120 :runs 1}
            :heap {:size 1000 :frames nil}
+           :step-loop {:frames 120 :runs 1}
            :blender-load-runs 3}})
 
 (def sim-budget
@@ -399,6 +447,17 @@
       (do (progress "simulating" (str "chain-" n))
           (merge {:creature (str "chain-" n) :segments n}
                  (measure-sim! (generated "chain" n 0) (update opts :frames frames-for n))))))))
+
+(defn run-step-loop!
+  "Step-loop rows: cortex.sim against bare Bullet for the Blender
+  creatures and a chain of ten."
+  [opts]
+  (let [measure (fn [make n] (measure-step-loop! make (update opts :frames frames-for n)))]
+    (vec (concat
+          (blender-rows "step loop" {} #(measure % (count (body/segments (%)))))
+          [(do (progress "step loop" "chain-10")
+               (merge {:creature "chain-10" :segments 10}
+                      (measure (generated "chain" 10 0) 10)))]))))
 
 (defn run-heap!
   "Heap rows for the planned size of chain and tree."
@@ -524,6 +583,13 @@
    ["sim peak MB" #(fmt 1 (:sim-peak-mb %))] ["sim frames" #(or (:sim-frames %) "-")]
    ["max heap MB" #(fmt 0 (:max-heap-mb %))]])
 
+(def step-loop-columns
+  [["creature" :creature] ["segments" :segments]
+   ["bare sim-s/cpu-s" #(fmt 1 (:bare-cpu %))] ["sim, none" #(fmt 1 (:none-cpu %))]
+   ["sim, all" #(fmt 1 (:all-cpu %))] ["none/bare" #(fmt 3 (:none-ratio %))]
+   ["all/bare" #(fmt 3 (:all-ratio %))] ["same motion" :same?]
+   ["frames" :frames] ["runs" :runs]])
+
 (def verdict-columns
   [["target" :target] ["measured" #(fmt 3 (:value %))]
    ["met" #(case (:met %) true "yes" false "NO" "not measured")]])
@@ -539,7 +605,7 @@
 
 (defn report
   "The text of all the tables of a benchmark `result`."
-  [{:keys [build exponents sim heap blender-load targets machine]}]
+  [{:keys [build exponents sim heap step-loop blender-load targets machine]}]
   (str/join
    "\n\n"
    [(str "cortex benchmark, " (:when machine) ", " (:cores machine) " cores, "
@@ -552,6 +618,8 @@
     (str "2. Simulation at 60 Hz fixed step: simulated seconds per wall second\n"
          (table sim-columns sim))
     (str "3. Heap\n" (table heap-columns heap))
+    (str "4. The step loop (cortex.sim) against bare Bullet, per CPU second: observing none, all\n"
+         (table step-loop-columns step-loop))
     (str ".blend load times, ms (medians by cortex.blender-bench's method)\n"
          (table (blender-load-columns blender-load) blender-load))
     (str "Targets\n" (table verdict-columns targets))]))
@@ -559,13 +627,15 @@
 (defn csv-rows
   "One [section creature segments metric value] row per number in
   `result`."
-  [{:keys [build sim heap exponents targets]}]
+  [{:keys [build sim heap step-loop exponents targets]}]
   (concat
    [["section" "creature" "segments" "metric" "value"]]
    (for [[section rows ks] [["build" build [:physical :targets :connect :sum :body :joints :runs]]
                             ["sim" sim [:cortex :bare :ratio :cortex-cpu :bare-cpu :cpu-ratio
                                         :same? :frames :runs]]
-                            ["heap" heap [:retained-mb :build-peak-mb :sim-peak-mb :max-heap-mb]]]
+                            ["heap" heap [:retained-mb :build-peak-mb :sim-peak-mb :max-heap-mb]]
+                            ["step-loop" step-loop [:bare-cpu :none-cpu :all-cpu :none-ratio
+                                                    :all-ratio :same? :frames :runs]]]
          r rows
          k ks
          :when (contains? r k)]
@@ -626,9 +696,10 @@
         build (run-build! (:build plan))
         sim (run-sim! (:sim plan))
         heap (run-heap! (:heap plan))
+        step-loop (run-step-loop! (:step-loop plan))
         blender-load (run-blender-load! (:blender-load-runs plan))
         result {:plan plan :build build :exponents (exponents build)
-                :sim sim :heap heap :blender-load blender-load
+                :sim sim :heap heap :step-loop step-loop :blender-load blender-load
                 :machine (assoc m :load-after (load-average))}]
     (assoc result :targets (verdicts result))))
 

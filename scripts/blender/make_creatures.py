@@ -105,10 +105,15 @@ def build_worm():
     c = half + HALF_GAP      # segment centres at x = -+1.015
     skin_a = material("worm-skin-1", (0.55, 0.75, 0.35, 1.0))
     skin_b = material("worm-skin-2", (0.45, 0.65, 0.30, 1.0))
-    segment("worm-1", chamfered_prism_x("worm-1", half, 0.3, 0.2, 0.15),
-            (-c, 0.0, z), 1.0, skin_a)
-    segment("worm-2", chamfered_prism_x("worm-2", half, 0.3, 0.2, 0.15),
-            (c, 0.0, z), 1.0, skin_b)
+    # Different friction on the two ends (a gripping head, a sliding
+    # tail): a worm symmetric in everything cannot crawl, since its one
+    # hinge pushes both halves alike.  cortex reads "friction" per segment.
+    head = segment("worm-1", chamfered_prism_x("worm-1", half, 0.3, 0.2, 0.15),
+                   (-c, 0.0, z), 1.0, skin_a)
+    head["friction"] = 1.0
+    tail = segment("worm-2", chamfered_prism_x("worm-2", half, 0.3, 0.2, 0.15),
+                   (c, 0.0, z), 1.0, skin_b)
+    tail["friction"] = 0.1
     root = joints_root()
     # Bends up/down: axis Y.  With the right-hand rule a positive angle about
     # +Y turns +X toward -Z, so the second segment dips for positive angles.

@@ -899,6 +899,11 @@
      :physics-joint physics-joint :geoms geoms :segments segments
      :pivot (vec3-of (.getWorldTranslation marker))
      :rotation [(.getX q) (.getY q) (.getZ q) (.getW q)]
+     :body-rotations (mapv (fn [^Geometry g]
+                             (let [r (.getPhysicsRotation
+                                      ^RigidBodyControl (.getControl g RigidBodyControl))]
+                               [(.getX r) (.getY r) (.getZ r) (.getW r)]))
+                           geoms)
      :distances (into {} (for [{n :name d :distance} (take 2 measured)] [n d]))}))
 
 (defn- log-warnings!
@@ -1040,7 +1045,8 @@
   :type, :description, :physics-joint (the jBullet joint), :geoms (the
   two segments, in order), :segments (their names), :pivot and
   :rotation (the joint empty's world position and rotation when it was
-  made, jME axes), :distances."
+  made, jME axes), :body-rotations (the two rigid bodies' rotations
+  then), :distances."
   [^Node creature]
   (:joints (build-record creature)))
 

@@ -19,8 +19,9 @@
   0.4)
 
 (def gap
-  "The space between two joined segments. Wider than two hull margins
-  (0.04 each), so joined neighbours at rest do not touch."
+  "The space between two joined segments, so joined neighbours at rest
+  do not touch (jme3-jbullet's hull shapes have no collision margin to
+  fill it)."
   0.1)
 
 (def joint-descriptions

@@ -1,0 +1,231 @@
+(ns cortex.muscle
+  "Muscles: torques at a creature's joints for the next physics step.
+
+  Entry points: `actuate!` (apply a map of actions to a creature),
+  `muscles` (what acting needs, per joint, worked out once), `efforts`
+  (actions checked and turned into clamped torques, nothing applied),
+  `apply-efforts!`, `default-strength`, `default-gains`, `clamp`.
+
+    {\"knee\" 1.5}                torque about a hinge's axis, N.m
+    {\"hip\" [0 0.3 0]}           torque in a cone or point joint's frame
+    {\"knee\" {:target 0.4}}      PD towards a hinge angle, rad
+    {\"hip\" {:target [0 0.2 0]}} PD towards a relative rotation vector
+    (a :target map may give :kp and :kd for the step)
+
+  Vectors are in the joint empty's frame, Blender's axes, as
+  cortex.proprioception reads them. A torque is internal: +t on the
+  second segment, -t on the first. Every effort is clamped to the
+  joint's strength. Bad actions are ex-infos naming the joint, raised
+  before any torque is applied."
+  (:require [clojure.string :as str]
+            [cortex.proprioception :as p])
+  (:import (com.bulletphysics.dynamics RigidBody)
+           (com.jme3.bullet.joints PhysicsJoint)
+           (com.jme3.math Vector3f)
+           (com.jme3.scene Node)))
+
+(set! *warn-on-reflection* true)
+
+(def gravity
+  "The gravity, m/s^2, that default strengths are sized against."
+  9.81)
+
+(def step
+  "The physics step the default gains are sized for, s."
+  (/ 1.0 60))
+
+(defn- v3 [^Vector3f v] [(double (.x v)) (double (.y v)) (double (.z v))])
+
+(defn- mass-of ^double [^RigidBody rb]
+  (if (zero? (.getInvMass rb)) 0.0 (/ 1.0 (.getInvMass rb))))
+
+(defn default-strength
+  "Twice the torque that holds the lighter moving segment straight out
+  against gravity: 2 g m d, over `loads`, [mass distance] of each
+  segment (mass 0 for a static one). 0 when neither moves."
+  ^double [loads]
+  (let [moving (for [[m d] loads :when (pos? (double m))] (* (double m) (double d)))]
+    (if (seq moving) (* 2.0 gravity (apply min moving)) 0.0)))
+
+(defn pivot-inertia
+  "The moment of inertia of `rb` about the axis through `pivot` along
+  the unit `axis`, both in the body's own frame (jME's axes): its own
+  moment about a parallel axis through its centre of mass, plus m r^2.
+  Infinite for a static body."
+  ^double [^RigidBody rb axis pivot]
+  (if (zero? (.getInvMass rb))
+    Double/POSITIVE_INFINITY
+    (let [inv (let [v (.getInvInertiaDiagLocal rb (javax.vecmath.Vector3f.))] [(.x v) (.y v) (.z v)])
+          own-inverse (reduce + (map (fn [i a] (* (double i) (double a) (double a))) inv axis))
+          own (if (pos? own-inverse) (/ 1.0 own-inverse) Double/POSITIVE_INFINITY)
+          along (p/dot pivot axis)
+          r2 (- (p/dot pivot pivot) (* along along))]
+      (+ own (* (mass-of rb) r2)))))
+
+(defn default-gains
+  "{:kp :kd} for a muscle of `strength` at a joint of reduced moment of
+  inertia `inertia`: kp = strength / 0.02, at most inertia (0.5/dt)^2,
+  and kd = 2 sqrt(kp inertia), critical damping."
+  [^double strength ^double inertia]
+  (let [kp (min (/ strength 0.02) (* inertia (Math/pow (/ 0.5 step) 2)))]
+    {:kp kp :kd (* 2.0 (Math/sqrt (* kp inertia)))}))
+
+(defn- given
+  "The non-negative number the joint's description gives for `k`, or
+  `default` (called) when it gives none."
+  [{:keys [name record]} k default]
+  (let [v (get-in record [:description k])]
+    (cond (nil? v) (default)
+          (and (number? v) (Double/isFinite (double v)) (not (neg? (double v)))) (double v)
+          :else (throw (ex-info (str "joint " (pr-str name) ": " k " must be a finite,"
+                                     " non-negative number, not " (pr-str v)
+                                     "; change it in the joint empty's joint property")
+                                {:joint name k v})))))
+
+(defn muscle
+  "What acting on the joint of proprioception sensor `sensor` needs:
+  the sensor with :strength, :kp, :kd and :inertia."
+  [{:keys [type axis frame-a frame-b ^RigidBody rb-a ^RigidBody rb-b record] :as sensor}]
+  (let [^PhysicsJoint j (:physics-joint record)
+        pa (v3 (.getPivotA j)) pb (v3 (.getPivotB j))
+        strength (given sensor :strength
+                        #(default-strength [[(mass-of rb-a) (Math/sqrt (p/dot pa pa))]
+                                            [(mass-of rb-b) (Math/sqrt (p/dot pb pb))]]))
+        reduced (fn [ax] (let [ia (pivot-inertia rb-a (p/rotate frame-a ax) pa)
+                               ib (pivot-inertia rb-b (p/rotate frame-b ax) pb)]
+                           (/ 1.0 (+ (/ 1.0 ia) (/ 1.0 ib)))))
+        inertia (if (= type :hinge)
+                  (reduced axis)
+                  (apply min (map reduced [[1 0 0] [0 1 0] [0 0 1]])))
+        inertia (if (and (Double/isFinite inertia) (pos? inertia)) inertia 1.0)
+        gains (default-gains strength inertia)]
+    (assoc sensor :strength strength :inertia inertia
+           :kp (given sensor :kp #(:kp gains))
+           :kd (given sensor :kd #(:kd gains)))))
+
+(defn muscles
+  "The muscles of `creature` (built by cortex.body/body!), by joint name."
+  [^Node creature]
+  (into {} (for [s (p/sensors creature)] [(:name s) (muscle s)])))
+
+(defn clamp
+  "`effort` (a number or an [x y z] torque) limited to `strength`: a
+  number into [-strength, strength], a vector scaled down to that length."
+  [effort ^double strength]
+  (if (number? effort)
+    (max (- strength) (min strength (double effort)))
+    (let [n (Math/sqrt (p/dot effort effort))]
+      (if (<= n strength)
+        (mapv double effort)
+        (mapv #(* (/ strength n) (double %)) effort)))))
+
+(defn- pd-torque
+  "The PD torque, unclamped, towards `target` for `muscle` as it is now."
+  [{:keys [type axis] :as muscle} {:keys [target] :as action}]
+  (let [kp (double (get action :kp (:kp muscle)))
+        kd (double (get action :kd (:kd muscle)))
+        q (p/relative-rotation muscle)
+        w (p/relative-angular-velocity muscle)]
+    (if (= type :hinge)
+      (- (* kp (p/wrap-angle (- (double target) (p/twist-angle q axis))))
+         (* kd (p/dot w axis)))
+      (let [error (p/rotation-vector (p/q* (p/from-rotation-vector target)
+                                           (p/q-conj (p/jme->blender q))))]
+        (mapv #(- (* kp (double %1)) (* kd (double %2))) error (p/jme->blender w))))))
+
+(defn- fail
+  [joint message data]
+  (throw (ex-info (str "joint " (pr-str joint) ": " message) (assoc data :joint joint))))
+
+(defn- finite? [x] (and (number? x) (Double/isFinite (double x))))
+
+(defn- finite-vector? [v] (and (sequential? v) (= 3 (count v)) (every? finite? v)))
+
+(defn- takes
+  "What a joint of `type` takes, for messages."
+  [type]
+  (if (= type :hinge)
+    "a finite torque (a number) or {:target angle}"
+    "a finite torque [x y z] or {:target [x y z]} (a rotation vector)"))
+
+(defn effort
+  "The torque, clamped to strength, that `action` asks of `muscle`: a
+  number for a hinge, [x y z] (joint frame, Blender's axes) otherwise.
+  An ex-info naming the joint when the action does not fit it."
+  [{:keys [name type strength] :as muscle} action]
+  (let [hinge? (= type :hinge)]
+    (cond
+      (map? action)
+      (let [{:keys [target]} action]
+        (when-not (if hinge? (finite? target) (finite-vector? target))
+          (fail name (str "a " (clojure.core/name type) " joint takes " (takes type)
+                          ", not " (pr-str action)) {:action action}))
+        (doseq [k [:kp :kd]
+                :let [g (get action k)]
+                :when (some? g)]
+          (when-not (and (finite? g) (not (neg? (double g))))
+            (fail name (str k " must be a finite, non-negative number, not " (pr-str g))
+                  {:action action})))
+        (clamp (pd-torque muscle action) strength))
+
+      (if hinge? (finite? action) (finite-vector? action))
+      (clamp action strength)
+
+      :else
+      (fail name (str "a " (clojure.core/name type) " joint takes " (takes type)
+                      ", not " (pr-str action)) {:action action}))))
+
+(defn efforts
+  "The clamped torque for every joint `actions` names, by name, given
+  `muscles` (see `muscles`). Every action is checked first: an ex-info
+  names the first bad joint, in name order, and nothing is computed."
+  [muscles actions]
+  (when-not (map? actions)
+    (throw (ex-info (str "actions must be a map from joint name to action, not "
+                         (pr-str actions))
+                    {:actions actions})))
+  (let [names (sort-by str (keys actions))]
+    (doseq [n names
+            :when (not (contains? muscles n))]
+      (fail n (str "there is no such joint; the joints are "
+                   (str/join ", " (sort (keys muscles))))
+            {:known (vec (sort (keys muscles)))}))
+    (into {} (for [n names] [n (effort (muscles n) (actions n))]))))
+
+(defn world-torque
+  "The torque `effort` asks of `muscle`, in jME's world axes."
+  [{:keys [type axis] :as muscle} effort]
+  (let [frame (p/frame-now muscle)]
+    (if (= type :hinge)
+      (mapv #(* (double effort) (double %)) (p/rotate frame axis))
+      (p/rotate frame (p/blender->jme effort)))))
+
+(defn- apply-torque!
+  [{:keys [^RigidBody rb-a ^RigidBody rb-b]} [x y z]]
+  (let [t (javax.vecmath.Vector3f. (float x) (float y) (float z))]
+    (.applyTorque rb-b t)
+    (.activate rb-b)
+    (.negate t)
+    (.applyTorque rb-a t)
+    (.activate rb-a)))
+
+(defn apply-efforts!
+  "Apply `efforts` (from `efforts`) at the joints of `muscles`."
+  [muscles efforts]
+  (doseq [[n e] efforts
+          :let [m (muscles n)]]
+    (apply-torque! m (world-torque m e))))
+
+(defn actuate!
+  "Apply `actions` (see the namespace doc) at the joints of `creature`,
+  built by cortex.body/body!, for the next physics step; or at
+  `muscles` (see `muscles`), which saves working them out every step.
+  Checks every action before applying any. Returns the efforts applied,
+  by joint name (N.m, joint frame)."
+  [creature-or-muscles actions]
+  (let [ms (if (instance? Node creature-or-muscles)
+             (muscles creature-or-muscles)
+             creature-or-muscles)
+        es (efforts ms actions)]
+    (apply-efforts! ms es)
+    es))

@@ -1,0 +1,233 @@
+(ns cortex.proprioception
+  "Proprioception: how each joint of a creature built by
+  cortex.body/body! is bent, and how fast, read from its rigid bodies.
+
+  Entry points: `proprioception` (every joint of a creature, by name),
+  `sensors` (what reading a creature's joints needs, computed once),
+  `read-joints` and `joint-state` (reading with those sensors). The
+  quaternion helpers (`q*`, `q-conj`, `rotate`, `swing-twist`, ...) work
+  on [x y z w] and [x y z] vectors of numbers.
+
+    hinge         {:type :hinge :angle a :velocity w}
+    cone, point   {:type :cone|:point :swing [s1 s2] :twist t
+                   :angular-velocity [x y z]}
+
+  Readings are of the second segment relative to the first (body! 's
+  order), in the joint empty's frame as the first carries it, Blender's
+  axes; a hinge's angle is positive by the right-hand rule about its
+  :axis, the angle its :limit holds; all zero in the build pose."
+  (:require [cortex.body :as body])
+  (:import (com.bulletphysics.dynamics RigidBody)
+           (com.bulletphysics.dynamics.constraintsolver ConeTwistConstraint HingeConstraint
+                                                        TypedConstraint)
+           (com.bulletphysics.linearmath MatrixUtil Transform)
+           (com.jme3.bullet.control RigidBodyControl)
+           (com.jme3.bullet.joints PhysicsJoint)
+           (com.jme3.scene Geometry Node)
+           (javax.vecmath Quat4f)))
+
+(set! *warn-on-reflection* true)
+
+(defn q*
+  "The Hamilton product p q: rotate by q, then by p."
+  [[px py pz pw] [qx qy qz qw]]
+  (let [px (double px) py (double py) pz (double pz) pw (double pw)
+        qx (double qx) qy (double qy) qz (double qz) qw (double qw)]
+    [(+ (* pw qx) (* px qw) (* py qz) (- (* pz qy)))
+     (+ (* pw qy) (- (* px qz)) (* py qw) (* pz qx))
+     (+ (* pw qz) (* px qy) (- (* py qx)) (* pz qw))
+     (- (* pw qw) (* px qx) (* py qy) (* pz qz))]))
+
+(defn q-conj
+  "The inverse of the unit quaternion `q`."
+  [[x y z w]]
+  [(- (double x)) (- (double y)) (- (double z)) (double w)])
+
+(defn rotate
+  "The vector `v` rotated by the unit quaternion `q`."
+  [q [x y z]]
+  (let [[rx ry rz] (q* (q* q [x y z 0.0]) (q-conj q))]
+    [rx ry rz]))
+
+(defn dot
+  "The dot product of two vectors of numbers."
+  ^double [a b]
+  (reduce + 0.0 (map * a b)))
+
+(defn normalize
+  "`v` scaled to length 1."
+  [v]
+  (let [n (Math/sqrt (dot v v))]
+    (mapv #(/ (double %) n) v)))
+
+(defn wrap-angle
+  "`a` brought into (-pi, pi]."
+  ^double [^double a]
+  (let [t (- a (* 2 Math/PI (Math/floor (/ (+ a Math/PI) (* 2 Math/PI)))))]
+    (if (== t (- Math/PI)) Math/PI t)))
+
+(defn jme->blender
+  "A vector in jME's axes (or a quaternion, by its vector part) in
+  Blender's: x, -z, y."
+  [[x y z & [w]]]
+  (cond-> [(double x) (- (double z)) (double y)] w (conj (double w))))
+
+(defn blender->jme
+  "The inverse of `jme->blender`."
+  [[x y z & [w]]]
+  (cond-> [(double x) (double z) (- (double y))] w (conj (double w))))
+
+(defn rotation-vector
+  "The rotation `q` as its axis times its angle, the angle in [0, pi]."
+  [q]
+  (let [[x y z w] (if (neg? (double (peek q))) (mapv - q) (mapv double q))
+        s (Math/sqrt (+ (* x x) (* y y) (* z z)))]
+    (if (< s 1e-12)
+      [(* 2.0 x) (* 2.0 y) (* 2.0 z)]
+      (let [k (/ (* 2.0 (Math/atan2 s w)) s)]
+        [(* k x) (* k y) (* k z)]))))
+
+(defn from-rotation-vector
+  "The unit quaternion of the rotation vector `r` (axis times angle)."
+  [r]
+  (let [a (Math/sqrt (dot r r))]
+    (if (< a 1e-12)
+      [0.0 0.0 0.0 1.0]
+      (let [k (/ (Math/sin (/ a 2)) a)]
+        (conj (mapv #(* k (double %)) r) (Math/cos (/ a 2)))))))
+
+(defn twist-angle
+  "The angle, in (-pi, pi], by which the rotation `q` turns about the
+  unit axis `u` (its twist, in the swing-twist decomposition)."
+  ^double [[x y z w] u]
+  (wrap-angle (* 2.0 (Math/atan2 (dot [x y z] u) (double w)))))
+
+(defn swing-twist
+  "The rotation `q` (Blender's axes, in a joint's frame) split into a
+  twist about X and a swing after it, q = swing * twist:
+  {:twist t :swing [y z]}, the swing as its rotation vector's Y and Z."
+  [q]
+  (let [[x _ _ w :as q] (if (neg? (double (peek q))) (mapv - q) q)
+        t (* 2.0 (Math/atan2 (double x) (double w)))
+        half (/ t 2)
+        swing (q* q [(- (Math/sin half)) 0.0 0.0 (Math/cos half)])
+        [_ sy sz] (rotation-vector swing)]
+    {:twist (wrap-angle t) :swing [sy sz]}))
+
+(defn rigid-body
+  "The jBullet RigidBody of segment `geom`."
+  ^RigidBody [^Geometry geom]
+  (let [^RigidBodyControl c (.getControl geom RigidBodyControl)]
+    (.getObjectId c)))
+
+(defn orientation
+  "How `rb` is turned now, [x y z w], jME's axes."
+  [^RigidBody rb]
+  (let [q (.getOrientation rb (Quat4f.))]
+    [(double (.x q)) (double (.y q)) (double (.z q)) (double (.w q))]))
+
+(defn angular-velocity
+  "`rb`'s angular velocity now, [x y z], jME's axes."
+  [^RigidBody rb]
+  (let [v (.getAngularVelocity rb (javax.vecmath.Vector3f.))]
+    [(double (.x v)) (double (.y v)) (double (.z v))]))
+
+(defn- basis-rotation
+  "The rotation of a jBullet Transform's basis, [x y z w]. A hinge's
+  second frame is left-handed (its third column is minus the axis, as in
+  Bullet's C++ original); its third column is turned round first."
+  [^Transform t]
+  (let [q (Quat4f.)
+        m (javax.vecmath.Matrix3f. (.basis t))]
+    (when (neg? (.determinant m))
+      (dotimes [i 3] (.setElement m i 2 (- (.getElement m i 2)))))
+    (MatrixUtil/getRotation m q)
+    [(double (.x q)) (double (.y q)) (double (.z q)) (double (.w q))]))
+
+(defn- designer-axis
+  "A hinge description's :axis (Blender's axes, X when absent), unit,
+  in jME's axes."
+  [description]
+  (let [a (get description :axis [1 0 0])
+        v (if (instance? com.jme3.math.Vector3f a)
+            (let [^com.jme3.math.Vector3f a a] [(.x a) (.y a) (.z a)])
+            a)]
+    (blender->jme (normalize v))))
+
+(defn rest-frames
+  "The frame of the joint `record` (see cortex.body/joint-records) as
+  each of its bodies carries it, {:frame-a q :frame-b q}, and for a
+  hinge :axis, its axis in that frame (jME's axes): see the chapter for
+  where each comes from."
+  [{:keys [type description ^PhysicsJoint physics-joint rotation body-rotations]}]
+  (let [^TypedConstraint c (.getObjectId physics-joint)
+        from-empty (fn [[qa qb]]
+                     {:frame-a (q* (q-conj qa) rotation) :frame-b (q* (q-conj qb) rotation)
+                      :axis (when (= type :hinge) (designer-axis description))})]
+    (cond
+      body-rotations (from-empty body-rotations)
+      (instance? HingeConstraint c)
+      {:frame-a (basis-rotation (.getAFrame ^HingeConstraint c (Transform.)))
+       :frame-b (basis-rotation (.getBFrame ^HingeConstraint c (Transform.)))
+       :axis [0.0 0.0 1.0]}
+      (instance? ConeTwistConstraint c)
+      {:frame-a (basis-rotation (.getAFrame ^ConeTwistConstraint c (Transform.)))
+       :frame-b (basis-rotation (.getBFrame ^ConeTwistConstraint c (Transform.)))}
+      :else (from-empty [[0.0 0.0 0.0 1.0] [0.0 0.0 0.0 1.0]]))))
+
+(defn sensor
+  "What reading the joint `record` (see cortex.body/joint-records)
+  needs: :name, :type, :segments, the bodies :rb-a and :rb-b, the
+  :frame-a and :frame-b it is read in, a hinge's :axis in that frame
+  (jME's axes), and the record itself."
+  [{:keys [name type geoms segments] :as record}]
+  (let [[a b] geoms]
+    (merge {:name name :type type :segments segments :record record
+            :rb-a (rigid-body a) :rb-b (rigid-body b)}
+           (rest-frames record))))
+
+(defn sensors
+  "The sensors of every joint of `creature`, which body! must have
+  built, in the order body! made them."
+  [^Node creature]
+  (mapv sensor (body/joint-records creature)))
+
+(defn frame-now
+  "The joint frame `sensor`'s first body carries, now, jME's world axes."
+  [{:keys [rb-a frame-a]}]
+  (q* (orientation rb-a) frame-a))
+
+(defn relative-rotation
+  "The rotation of the joint frame body B carries relative to the one
+  body A carries, in the joint's frame, jME's axes: identity at rest."
+  [{:keys [rb-b frame-b] :as sensor}]
+  (q* (q-conj (frame-now sensor)) (q* (orientation rb-b) frame-b)))
+
+(defn relative-angular-velocity
+  "Body B's angular velocity relative to body A's, in the joint frame
+  body A carries, jME's axes."
+  [{:keys [rb-a rb-b] :as sensor}]
+  (rotate (q-conj (frame-now sensor))
+          (mapv - (angular-velocity rb-b) (angular-velocity rb-a))))
+
+(defn joint-state
+  "The state of the joint `sensor` reads, now (see the namespace doc)."
+  [{:keys [type axis] :as sensor}]
+  (let [q (relative-rotation sensor)
+        w (relative-angular-velocity sensor)]
+    (if (= type :hinge)
+      {:type :hinge :angle (twist-angle q axis) :velocity (dot w axis)}
+      (let [{:keys [swing twist]} (swing-twist (jme->blender q))]
+        {:type type :swing swing :twist twist :angular-velocity (jme->blender w)}))))
+
+(defn read-joints
+  "The state of the joint each of `sensors` reads, by joint name."
+  [sensors]
+  (persistent! (reduce (fn [m s] (assoc! m (:name s) (joint-state s))) (transient {}) sensors)))
+
+(defn proprioception
+  "Every joint of `creature` (built by cortex.body/body!), by the name
+  of its joint empty: its state now (see the namespace doc). Radians
+  and radians per second."
+  [^Node creature]
+  (read-joints (sensors creature)))

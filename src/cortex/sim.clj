@@ -1,0 +1,210 @@
+(ns cortex.sim
+  "A step loop for a creature: build a simulation, then call `step!`
+  with each step's actions, without jME's application or render thread.
+  Stepping is bit for bit what a cortex world does.
+
+  Entry points: `simulation`, `step!`, `observe`, `sync!` (copy the
+  bodies to the scene graph), `world` (a cortex world that shows a
+  simulation and steps it, for windows and cortex.render's recording),
+  `steps`, `sim-time`, `destroy!`."
+  (:require [cortex.body :as body]
+            [cortex.muscle :as muscle]
+            [cortex.proprioception :as p]
+            [cortex.touch :as touch]
+            [cortex.util :as util]
+            [cortex.world :as world])
+  (:import (com.bulletphysics.dynamics RigidBody)
+           (com.jme3.app SimpleApplication)
+           (com.jme3.bullet PhysicsSpace PhysicsSpace$BroadphaseType)
+           (com.jme3.bullet.control RigidBodyControl)
+           (com.jme3.bullet.objects PhysicsRigidBody)
+           (com.jme3.math ColorRGBA Vector3f)
+           (com.jme3.scene Geometry Node)
+           (java.util IdentityHashMap Map)
+           (javax.vecmath Quat4f)))
+
+(set! *warn-on-reflection* true)
+
+(def tpf
+  "The time per frame a cortex world passes to Bullet: the ratchet
+  timer's 1f/60."
+  (float (/ (float 1) (float 60))))
+
+(def max-sub-steps
+  "PhysicsSpace.update's default: at most four Bullet steps per frame."
+  4)
+
+(defn physics-space
+  "A PhysicsSpace made as BulletAppState makes one: world bounds of
+  +-10000, the DBVT broadphase."
+  ^PhysicsSpace []
+  (PhysicsSpace. (Vector3f. -10000 -10000 -10000) (Vector3f. 10000 10000 10000)
+                 PhysicsSpace$BroadphaseType/DBVT))
+
+(defn floor
+  "A static grey box named \"floor\", 40 by 40 units, its top at `height`."
+  ^Geometry [height]
+  (util/box 20 0.5 20 :position (Vector3f. 0 (- (float height) 0.5) 0)
+            :color ColorRGBA/Gray :mass 0 :name "floor"))
+
+(def all-observations
+  "Everything a step can observe."
+  #{:joints :segments :touch})
+
+(defn- physical-segments
+  "[name geometry rigid-body] of each physical segment under `node`."
+  [^Node node]
+  (let [segs (vec (for [^Geometry g (body/segments node)
+                        :let [^RigidBodyControl c (.getControl g RigidBodyControl)]
+                        :when c]
+                    [(body/segment-name g) g (.getObjectId c)]))
+        twice (sort (for [[n k] (frequencies (map first segs)) :when (> k 1)] n))]
+    (when (seq twice)
+      (throw (ex-info (str "segments share the names " (pr-str (vec twice))
+                           "; rename them in Blender so that each can be observed")
+                      {:names (vec twice)})))
+    segs))
+
+(defn- identity-map ^Map [pairs]
+  (let [m (IdentityHashMap.)]
+    (doseq [[k v] pairs] (.put m k v))
+    m))
+
+(defn- check-options!
+  [{:keys [gravity floor observe] :as opts}]
+  (when-not (and (sequential? gravity) (= 3 (count gravity)) (every? util/finite? gravity))
+    (throw (ex-info (str ":gravity must be [x y z], finite numbers, not " (pr-str gravity)) opts)))
+  (when-not (or (nil? floor) (util/finite? floor))
+    (throw (ex-info (str ":floor must be a height or nil, not " (pr-str floor)) opts)))
+  (when-not (and (coll? observe) (every? all-observations observe))
+    (throw (ex-info (str ":observe must be a subset of " (pr-str all-observations)
+                         ", not " (pr-str observe))
+                    opts))))
+
+(defn- has-body? [creature]
+  (try (body/joint-records creature) true
+       (catch clojure.lang.ExceptionInfo _ false)))
+
+(defn simulation
+  "A simulation of `creature` (a creature Node; given its body with
+  cortex.body/body! unless it has one) in a new PhysicsSpace, with
+  `opts`: :gravity [x y z] (default [0 -9.81 0]), :floor (height of
+  the top of a static floor, or nil: the default), :observe (a subset
+  of #{:joints :segments :touch}, what `step!` returns besides :time;
+  all by default). Use it from one thread at a time."
+  ([creature] (simulation creature {}))
+  ([^Node creature opts]
+   (let [{:keys [gravity floor observe] :as opts}
+         (merge {:gravity [0 -9.81 0] :floor nil :observe all-observations} opts)
+         _ (check-options! opts)
+         _ (when-not (has-body? creature) (body/body! creature))
+         floor-geom (when floor (cortex.sim/floor floor))
+         root (util/nodify "simulation" (cond-> [creature] floor-geom (conj floor-geom)))
+         space (physics-space)
+         segs (physical-segments creature)
+         sensors (p/sensors creature)
+         g (util/vec3 gravity)]
+     (.addAll space root)
+     (.setGravity space g)
+     (doseq [^PhysicsRigidBody b (.getRigidBodyList space)]
+       (.setGravity b g)
+       (.activate b))
+     {:space space :creature creature :root root :observe (set observe)
+      :sensors sensors
+      :muscles (into {} (for [s sensors] [(:name s) (muscle/muscle s)]))
+      :segments (mapv (fn [[n _ rb]] [n rb]) segs)
+      :controls (vec (for [^Geometry geom (body/segments root)
+                           :let [c (.getControl geom RigidBodyControl)]
+                           :when c]
+                       [geom c]))
+      :segment-names (identity-map (for [[n _ rb] segs] [rb n]))
+      :object-names (identity-map (for [[n _ rb] (when floor-geom (physical-segments root))
+                                        :when (= n "floor")]
+                                    [rb n]))
+      :steps (long-array 1)})))
+
+(defn steps
+  "How many steps `sim` has taken."
+  ^long [{:keys [^longs steps]}]
+  (aget steps 0))
+
+(defn sim-time
+  "Simulated seconds so far: steps / 60."
+  ^double [sim]
+  (/ (double (steps sim)) 60.0))
+
+(defn- segment-state
+  [^RigidBody rb]
+  (let [v (javax.vecmath.Vector3f.)
+        q (.getOrientation rb (Quat4f.))
+        triple (fn [^javax.vecmath.Vector3f v] [(.x v) (.y v) (.z v)])]
+    {:position (triple (.getCenterOfMassPosition rb v))
+     :rotation [(.x q) (.y q) (.z q) (.w q)]
+     :velocity (triple (.getLinearVelocity rb v))
+     :angular-velocity (triple (.getAngularVelocity rb v))}))
+
+(defn observe
+  "What `sim` senses now: :time, and each of `parts` (by default its
+  :observe): :joints (proprioception), :segments ({name {:position
+  :rotation :velocity :angular-velocity}}, jME's world axes) and :touch."
+  ([sim] (observe sim (:observe sim)))
+  ([{:keys [sensors segments space segment-names object-names] :as sim} parts]
+   (cond-> {:time (sim-time sim)}
+     (contains? parts :joints) (assoc :joints (p/read-joints sensors))
+     (contains? parts :segments)
+     (assoc :segments (into {} (for [[n rb] segments] [n (segment-state rb)])))
+     (contains? parts :touch) (assoc :touch (touch/contacts space segment-names object-names)))))
+
+(defn step!
+  "Apply `actions` (see cortex.muscle; nil or {} for none) for one step,
+  advance `sim` by exactly 1/60 s and return the observation (see
+  `observe`). Bad actions throw, naming the joint, before anything is
+  applied or stepped."
+  ([sim] (step! sim nil))
+  ([{:keys [^PhysicsSpace space muscles ^longs steps] :as sim} actions]
+   (when (seq actions)
+     (muscle/apply-efforts! muscles (muscle/efforts muscles actions)))
+   (.update space (float tpf) (int max-sub-steps))
+   (.distributeEvents space)
+   (aset steps 0 (inc (aget steps 0)))
+   (observe sim)))
+
+(defn sync!
+  "Copy every body's place and turn to its Geometry, as each
+  RigidBodyControl does in a world's frame, and bring the scene graph's
+  world transforms up to date. Returns the simulation's root Node."
+  ^Node [{:keys [^Node root controls]}]
+  (.updateGeometricState root)
+  (doseq [[^Geometry g ^RigidBodyControl c] controls]
+    (.applyTransform (.getMotionState c) g))
+  (.updateGeometricState root)
+  root)
+
+(defn destroy!
+  "Free `sim`'s physics space."
+  [{:keys [^PhysicsSpace space]}]
+  (.destroy space))
+
+(defn world
+  "A cortex world showing `sim` and stepping it once a frame with the
+  actions (controller observation) returns, the observation being the
+  last step's (at first, `observe`'s). `setup` (of the world) runs
+  after the scene is lit and the camera placed to look at the creature
+  from the side. The world owns the simulation until it stops."
+  ([sim controller] (world sim controller world/no-op))
+  ([{:keys [^Node root creature] :as sim} controller setup]
+   (let [last-observation (atom nil)]
+     (world/world (Node. "view") {}
+                  (fn [^SimpleApplication w]
+                    (.attachChild (.getRootNode w) root)
+                    (util/light-up-everything w)
+                    (.updateGeometricState root)
+                    (let [c (.getCenter (.getWorldBound ^Node creature))]
+                      (doto (.getCamera w)
+                        (.setLocation (.add c (Vector3f. 0 3 9)))
+                        (.lookAt c Vector3f/UNIT_Y)))
+                    (reset! last-observation (observe sim))
+                    (setup w))
+                  (fn [_ _]
+                    (reset! last-observation
+                            (step! sim (controller @last-observation))))))))

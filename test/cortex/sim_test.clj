@@ -1,0 +1,144 @@
+(ns cortex.sim-test
+  (:require [clojure.java.io :as io]
+            [clojure.test :refer [deftest is testing]]
+            [cortex.body :as body]
+            [cortex.joint-fixtures :as f]
+            [cortex.render :as render]
+            [cortex.sim :as sim]
+            [cortex.util :as util]
+            [cortex.world :as world])
+  (:import (com.jme3.bullet.control RigidBodyControl)
+           (com.jme3.math Vector3f)
+           (com.jme3.scene Geometry Node)
+           (java.nio.file Files)
+           (java.nio.file.attribute FileAttribute)))
+
+(set! *warn-on-reflection* true)
+
+(defn crawl-gait
+  "The worm's open-loop gait at time `t`: from 0.5 s, when it has
+  landed, its hinge's target rises from 0 to 0.78 rad over 90% of each
+  1/1.5 s cycle, and drops back."
+  [t]
+  (let [phase (mod (* 1.5 (max 0.0 (- (double t) 0.5))) 1.0)
+        up 0.9]
+    {"worm-joint" {:target (* 0.78 (if (< phase up)
+                                     (/ phase up)
+                                     (- 1 (/ (- phase up) (- 1 up)))))}}))
+
+(defn grippy-worm
+  "The worm as its file makes it: worm-1 with friction 1.0, worm-2 with
+  0.1 (custom properties)."
+  []
+  (body/body! (util/load-blender-model f/worm-path)))
+
+(defn- even-worm
+  "The worm with both segments' friction set to 0.5, as a designer would
+  set it in Blender: a custom property on each object."
+  []
+  (let [^Node c (util/load-blender-model f/worm-path)]
+    (doseq [n ["worm-1" "worm-2"]]
+      (.setUserData (.getChild c ^String n) "friction" (float 0.5)))
+    (body/body! c)))
+
+(defn- centre [obs]
+  (let [ps (map :position (vals (:segments obs)))]
+    (mapv #(/ (double %) (count ps)) (apply map + ps))))
+
+(defn- crawl
+  "Every observation of the grippy worm crawling for 10 s."
+  []
+  (let [s (sim/simulation (grippy-worm) {:floor 0})]
+    (vec (for [_ (range 600)] (sim/step! s (crawl-gait (sim/sim-time s)))))))
+
+(deftest the-worm-crawls
+  (let [run-1 (crawl)
+        run-2 (crawl)
+        start (centre (run-1 0))
+        [dx _ dz] (mapv - (centre (peek run-1)) start)]
+    (is (= run-1 run-2) "two runs give bit-identical observations")
+    (testing "along its length (x), towards its grippy end, at least a segment length"
+      (is (<= dx -2.0) (str "moved " dx " along x")))
+    (testing "and much more along than sideways"
+      (is (< (Math/abs (double dz)) (/ (Math/abs (double dx)) 2))))
+    (testing "with the same friction on both segments it does not crawl"
+      (let [s (sim/simulation (even-worm) {:floor 0})
+            obs (vec (for [_ (range 600)] (sim/step! s (crawl-gait (sim/sim-time s)))))]
+        (is (< (Math/abs (double (- (first (centre (peek obs))) (first (centre (obs 0)))))) 0.5))))))
+
+(defn- body-states
+  [^Node node]
+  (vec (for [^Geometry g (body/segments node)
+             :let [^RigidBodyControl c (.getControl g RigidBodyControl)]
+             :when c
+             :let [l (.getPhysicsLocation c) q (.getPhysicsRotation c)
+                   v (.getLinearVelocity c) w (.getAngularVelocity c)]]
+         [(.getName g) [(.x l) (.y l) (.z l)] [(.getX q) (.getY q) (.getZ q) (.getW q)]
+          [(.x v) (.y v) (.z v)] [(.x w) (.y w) (.z w)]])))
+
+(defn- world-run [make floor frames]
+  (let [c (body/body! (make))
+        w (world/world (util/nodify [c (sim/floor floor)]) {}
+                       #(world/set-gravity % (Vector3f. 0 -9.81 0)) world/no-op)]
+    (world/run-world! w frames)
+    (body-states c)))
+
+(defn- sim-run [make floor frames]
+  (let [c (body/body! (make))
+        s (sim/simulation c {:floor floor})]
+    (dotimes [_ frames] (sim/step! s))
+    (body-states c)))
+
+(deftest same-motion-as-a-world
+  (doseq [[label make floor frames] [["worm" #(util/load-blender-model f/worm-path) -1 180]
+                                     ["hand" #(util/load-blender-model f/hand-path) 0 120]
+                                     ["chain-10" #(f/chain 10 2) 0 180]]]
+    (testing label
+      (is (= (world-run make floor frames) (sim-run make floor frames))))))
+
+(deftest touch-reports-contacts
+  (let [s (sim/simulation (util/load-blender-model f/worm-path) {:floor 0})
+        in-air (:touch (sim/step! s))
+        resting (vec (for [i (range 120)] (:touch (sim/step! s))))
+        total (fn [touch] (+ (get-in touch ["worm-1" :impulse]) (get-in touch ["worm-2" :impulse])))
+        mean (/ (reduce + (map total (subvec resting 30 120))) 90)
+        weight-impulse (* 2 9.81 (/ 1 60.0))]
+    (is (= {"worm-1" {:touching #{} :impulse 0.0} "worm-2" {:touching #{} :impulse 0.0}} in-air))
+    (is (= #{"floor"} (get-in (peek resting) ["worm-1" :touching])
+           (get-in (peek resting) ["worm-2" :touching])))
+    (testing "on average the floor's impulses carry the worm's weight, m g dt a step"
+      (is (< (Math/abs (- mean weight-impulse)) (* 0.1 weight-impulse)) (str "mean " mean)))))
+
+(deftest observe-only-what-is-asked
+  (let [s (sim/simulation (util/load-blender-model f/worm-path) {:floor 0 :observe #{}})]
+    (is (= {:time (/ 1 60.0)} (sim/step! s)))
+    (is (= #{:time :joints} (set (keys (sim/observe s #{:joints})))))))
+
+(deftest bad-options-are-named
+  (doseq [[opts pattern] [[{:gravity [0 -9.81]} #":gravity"]
+                          [{:floor "low"} #":floor"]
+                          [{:observe #{:smell}} #":observe"]]]
+    (is (thrown-with-msg? clojure.lang.ExceptionInfo pattern
+                          (sim/simulation (util/load-blender-model f/worm-path) opts)))))
+
+(deftest sync-moves-the-geometries
+  (let [s (sim/simulation (util/load-blender-model f/worm-path) {:floor 0})]
+    (dotimes [_ 60] (sim/step! s))
+    (sim/sync! s)
+    (doseq [^Geometry g (body/segments (:creature s))
+            :let [^RigidBodyControl c (.getControl g RigidBodyControl)]]
+      (is (< (.distance (.getWorldTranslation g) (.getPhysicsLocation c)) 1e-5))
+      (is (< (Math/abs (- (.y (.getWorldTranslation g)) 0.3)) 0.05) "resting on the floor"))))
+
+(deftest a-simulation-can-be-recorded
+  (let [dir (str (Files/createTempDirectory "cortex-sim" (into-array FileAttribute [])))
+        recorded (sim/simulation (grippy-worm) {:floor 0})
+        w (sim/world recorded #(crawl-gait (:time %)))
+        plain (sim/simulation (grippy-worm) {:floor 0})]
+    (render/record! w dir {:progress nil})
+    (render/run-offscreen! w 30 {:size [320 240]})
+    (dotimes [_ 30] (sim/step! plain (crawl-gait (sim/sim-time plain))))
+    (is (= 30 (count (render/frames-in dir))))
+    (is (pos? (.length (io/file dir "frame-000030.png"))))
+    (is (= 30 (sim/steps recorded)))
+    (is (= (sim/observe plain) (sim/observe recorded)))))
