@@ -63,12 +63,14 @@
       (+ own (* (mass-of rb) r2)))))
 
 (defn default-gains
-  "{:kp :kd} for a muscle of `strength` at a joint of reduced moment of
-  inertia `inertia`: kp = strength / 0.02, at most inertia (0.5/dt)^2,
-  and kd = 2 sqrt(kp inertia), critical damping."
-  [^double strength ^double inertia]
+  "{:kp :kd} for a muscle of `strength` at a joint whose two segments
+  have a reduced moment of inertia `inertia` about the pin and `own`
+  about their centres of mass: kp = strength / 0.02, at most inertia
+  (0.5/dt)^2; kd = 2 sqrt(kp inertia), critical damping, but at most
+  own/dt, so that one step never overshoots (see the text)."
+  [^double strength ^double inertia ^double own]
   (let [kp (min (/ strength 0.02) (* inertia (Math/pow (/ 0.5 step) 2)))]
-    {:kp kp :kd (* 2.0 (Math/sqrt (* kp inertia)))}))
+    {:kp kp :kd (min (* 2.0 (Math/sqrt (* kp inertia))) (/ own step))}))
 
 (defn- given
   "The non-negative number the joint's description gives for `k`, or
@@ -91,14 +93,20 @@
         strength (given sensor :strength
                         #(default-strength [[(mass-of rb-a) (Math/sqrt (p/dot pa pa))]
                                             [(mass-of rb-b) (Math/sqrt (p/dot pb pb))]]))
-        reduced (fn [ax] (let [ia (pivot-inertia rb-a (p/rotate frame-a ax) pa)
-                               ib (pivot-inertia rb-b (p/rotate frame-b ax) pb)]
-                           (/ 1.0 (+ (/ 1.0 ia) (/ 1.0 ib)))))
-        inertia (if (= type :hinge)
-                  (reduced axis)
-                  (apply min (map reduced [[1 0 0] [0 1 0] [0 0 1]])))
-        inertia (if (and (Double/isFinite inertia) (pos? inertia)) inertia 1.0)
-        gains (default-gains strength inertia)]
+        ;; the moment about the pin, and each body's own about its centre
+        ;; of mass (what one step of jBullet's solver lets a torque see)
+        reduced (fn [ax pin-a pin-b]
+                  (let [ia (pivot-inertia rb-a (p/rotate frame-a ax) pin-a)
+                        ib (pivot-inertia rb-b (p/rotate frame-b ax) pin-b)]
+                    (/ 1.0 (+ (/ 1.0 ia) (/ 1.0 ib)))))
+        least (fn [pin-a pin-b]
+                (let [i (if (= type :hinge)
+                          (reduced axis pin-a pin-b)
+                          (apply min (map #(reduced % pin-a pin-b) [[1 0 0] [0 1 0] [0 0 1]])))]
+                  (if (and (Double/isFinite i) (pos? i)) i 1.0)))
+        inertia (least pa pb)
+        own (min inertia (least [0 0 0] [0 0 0]))
+        gains (default-gains strength inertia own)]
     (assoc sensor :strength strength :inertia inertia
            :kp (given sensor :kp #(:kp gains))
            :kd (given sensor :kd #(:kd gains)))))

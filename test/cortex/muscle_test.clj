@@ -72,6 +72,14 @@
       (testing (str "target " target)
         (is (every? #(< (Math/abs (- (double %) (double target))) 0.02) (subvec as 240)))))))
 
+(deftest a-pd-target-settles-floating-free
+  (let [s (sim/simulation (util/load-blender-model f/worm-path) {:gravity [0 0 0]})
+        obs (vec (for [_ (range 120)] (sim/step! s {"worm-joint" {:target 0.5}})))]
+    (doseq [o (subvec obs 110)
+            :let [{:keys [angle velocity]} (get-in o [:joints "worm-joint"])]]
+      (is (< (Math/abs (- (double angle) 0.5)) 1e-3) (str "angle " angle))
+      (is (< (Math/abs (double velocity)) 1e-2) (str "velocity " velocity)))))
+
 (deftest muscles-are-internal
   (let [s (sim/simulation (f/chain 6 0) {:gravity [0 0 0]})
         muscles (:muscles s)
