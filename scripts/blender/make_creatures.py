@@ -113,7 +113,7 @@ def build_worm():
     head["friction"] = 1.0
     tail = segment("worm-2", chamfered_prism_x("worm-2", half, 0.3, 0.2, 0.15),
                    (c, 0.0, z), 1.0, skin_b)
-    tail["friction"] = 0.1
+    tail["friction"] = 0.0
     root = joints_root()
     # Bends up/down: axis Y.  With the right-hand rule a positive angle about
     # +Y turns +X toward -Z, so the second segment dips for positive angles.

@@ -44,15 +44,29 @@
   [(- (double x)) (- (double y)) (- (double z)) (double w)])
 
 (defn rotate
-  "The vector `v` rotated by the unit quaternion `q`."
-  [q [x y z]]
-  (let [[rx ry rz] (q* (q* q [x y z 0.0]) (q-conj q))]
-    [rx ry rz]))
+  "The vector `v` rotated by the unit quaternion `q`: v + 2w (u x v) +
+  2 u x (u x v), u the vector part and w the scalar part of q."
+  [q v]
+  (let [ux (double (nth q 0)) uy (double (nth q 1)) uz (double (nth q 2)) w (double (nth q 3))
+        x (double (nth v 0)) y (double (nth v 1)) z (double (nth v 2))
+        ;; t = 2 (u x v)
+        tx (* 2.0 (- (* uy z) (* uz y)))
+        ty (* 2.0 (- (* uz x) (* ux z)))
+        tz (* 2.0 (- (* ux y) (* uy x)))]
+    [(+ x (* w tx) (- (* uy tz) (* uz ty)))
+     (+ y (* w ty) (- (* uz tx) (* ux tz)))
+     (+ z (* w tz) (- (* ux ty) (* uy tx)))]))
 
 (defn dot
-  "The dot product of two vectors of numbers."
+  "The dot product of two vectors of numbers (three-vectors, the common
+  case, without a sequence)."
   ^double [a b]
-  (reduce + 0.0 (map * a b)))
+  (if (and (vector? a) (vector? b) (== 3 (count a)) (== 3 (count b)))
+    (let [^clojure.lang.IPersistentVector a a ^clojure.lang.IPersistentVector b b]
+      (+ (* (double (.nth a 0)) (double (.nth b 0)))
+         (* (double (.nth a 1)) (double (.nth b 1)))
+         (* (double (.nth a 2)) (double (.nth b 2)))))
+    (reduce + 0.0 (map * a b))))
 
 (defn normalize
   "`v` scaled to length 1."
@@ -69,13 +83,19 @@
 (defn jme->blender
   "A vector in jME's axes (or a quaternion, by its vector part) in
   Blender's: x, -z, y."
-  [[x y z & [w]]]
-  (cond-> [(double x) (- (double z)) (double y)] w (conj (double w))))
+  [v]
+  (let [x (double (nth v 0)) y (double (nth v 1)) z (double (nth v 2))]
+    (if (== 4 (count v))
+      [x (- z) y (double (nth v 3))]
+      [x (- z) y])))
 
 (defn blender->jme
   "The inverse of `jme->blender`."
-  [[x y z & [w]]]
-  (cond-> [(double x) (double z) (- (double y))] w (conj (double w))))
+  [v]
+  (let [x (double (nth v 0)) y (double (nth v 1)) z (double (nth v 2))]
+    (if (== 4 (count v))
+      [x z (- y) (double (nth v 3))]
+      [x z (- y)])))
 
 (defn rotation-vector
   "The rotation `q` as its axis times its angle, the angle in [0, pi]."
@@ -212,9 +232,12 @@
 
 (defn joint-state
   "The state of the joint `sensor` reads, now (see the namespace doc)."
-  [{:keys [type axis] :as sensor}]
-  (let [q (relative-rotation sensor)
-        w (relative-angular-velocity sensor)]
+  [{:keys [type axis rb-a rb-b frame-a frame-b]}]
+  (let [;; each body's orientation is read once: the same arithmetic as
+        ;; relative-rotation and relative-angular-velocity, shared
+        back (q-conj (q* (orientation rb-a) frame-a))
+        q (q* back (q* (orientation rb-b) frame-b))
+        w (rotate back (mapv - (angular-velocity rb-b) (angular-velocity rb-a)))]
     (if (= type :hinge)
       {:type :hinge :angle (twist-angle q axis) :velocity (dot w axis)}
       (let [{:keys [swing twist]} (swing-twist (jme->blender q))]

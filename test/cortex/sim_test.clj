@@ -17,18 +17,18 @@
 
 (defn crawl-gait
   "The worm's open-loop gait at time `t`: from 0.5 s, when it has
-  landed, its hinge's target rises from 0 to 0.78 rad over 90% of each
+  landed, its hinge's target rises from 0 to 0.6 rad over 80% of each
   1/1.5 s cycle, and drops back."
   [t]
   (let [phase (mod (* 1.5 (max 0.0 (- (double t) 0.5))) 1.0)
-        up 0.9]
-    {"worm-joint" {:target (* 0.78 (if (< phase up)
-                                     (/ phase up)
-                                     (- 1 (/ (- phase up) (- 1 up)))))}}))
+        up 0.8]
+    {"worm-joint" {:target (* 0.6 (if (< phase up)
+                                    (/ phase up)
+                                    (- 1 (/ (- phase up) (- 1 up)))))}}))
 
 (defn grippy-worm
   "The worm as its file makes it: worm-1 with friction 1.0, worm-2 with
-  0.1 (custom properties)."
+  0 (custom properties)."
   []
   (body/body! (util/load-blender-model f/worm-path)))
 
