@@ -28,11 +28,51 @@
   :javac-options ["--release" "11" "-Xlint:-options"]
   :jvm-opts ["-Djava.util.logging.config.file=logging.properties"]
   :main cortex.main
+  ;; REPLs (lein repl, lein term, editors' jack-in) start in user: dev/user.clj
+  :repl-options {:init-ns user
+                 ;; what goes wrong at the REPL is said to be at the REPL, not in
+                 ;; the temporary file Leiningen starts the server from
+                 :init (when (thread-bound? #'*file* #'*source-path*)
+                         (set! *file* "NO_SOURCE_PATH")
+                         (set! *source-path* "NO_SOURCE_FILE"))}
   :aliases {"tangle" ["run" "-m" "cortex.tangle"]
-            ;; Leiningen's REPL client (REPLy) is only on Clojars; see cortex.repl
-            "repl" ["trampoline" "run" "-m" "cortex.repl"]
+            ;; lein term: a terminal REPL, for machines without Clojars, where
+            ;; Leiningen's own client (REPLy) lives; it honours :repl-options,
+            ;; so middleware injected the way editors do it is served too.
+            ;; bin/lein term adds line editing (rlwrap). See org/repl.org.
+            "term" ["trampoline" "run" "-m" "cortex.repl" :project/repl-options]
             ;; lein bench [--quick]: build and simulation timings; see org/bench.org
-            "bench" ["run" "-m" "cortex.bench"]}
+            "bench" ["run" "-m" "cortex.bench"]
+            ;; lein evolve: the worm learns to crawl; see org/evolve.org
+            "evolve" ["run" "-m" "cortex.evolve"]}
   :profiles {:dev {:source-paths ["dev"]
                    :dependencies [[org.jmonkeyengine/jme3-blender "3.2.4-stable"]
-                                  [org.clojure/test.check "1.1.1"]]}})
+                                  [org.clojure/test.check "1.1.1"]
+                                  ;; (user/reset): reload what changed
+                                  [org.clojure/tools.namespace "1.5.0"]]}
+             ;; lein with-profile +spark ...: cortex.spark runs rollouts as a Spark
+             ;; job (see org/rollout.org); the base library never pulls Spark in
+             :spark {:source-paths ["spark/src"]
+                     :test-paths ["spark/test"]
+                     :java-source-paths ["spark/java"]
+                     :dependencies [[org.apache.spark/spark-core_2.13 "3.5.6"]
+                                    [org.apache.spark/spark-sql_2.13 "3.5.6"]
+                                    ;; Spark logs through log4j2 by slf4j 2 (avro's 1.7 would win)
+                                    [org.slf4j/slf4j-api "2.0.7"]]
+                     ;; Spark on Java 17: the module openings spark-submit adds
+                     :jvm-opts ["-XX:+IgnoreUnrecognizedVMOptions"
+                                "--add-opens=java.base/java.lang=ALL-UNNAMED"
+                                "--add-opens=java.base/java.lang.invoke=ALL-UNNAMED"
+                                "--add-opens=java.base/java.lang.reflect=ALL-UNNAMED"
+                                "--add-opens=java.base/java.io=ALL-UNNAMED"
+                                "--add-opens=java.base/java.net=ALL-UNNAMED"
+                                "--add-opens=java.base/java.nio=ALL-UNNAMED"
+                                "--add-opens=java.base/java.util=ALL-UNNAMED"
+                                "--add-opens=java.base/java.util.concurrent=ALL-UNNAMED"
+                                "--add-opens=java.base/java.util.concurrent.atomic=ALL-UNNAMED"
+                                "--add-opens=java.base/jdk.internal.ref=ALL-UNNAMED"
+                                "--add-opens=java.base/sun.nio.ch=ALL-UNNAMED"
+                                "--add-opens=java.base/sun.nio.cs=ALL-UNNAMED"
+                                "--add-opens=java.base/sun.security.action=ALL-UNNAMED"
+                                "--add-opens=java.base/sun.util.calendar=ALL-UNNAMED"
+                                "-Djdk.reflect.useDirectMethodHandle=false"]}})

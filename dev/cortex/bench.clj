@@ -1,3 +1,4 @@
+;; Generated from org/bench.org by lein tangle: edit the chapter, not this file.
 (ns cortex.bench
   "lein bench: how long cortex takes to build bodies (split into hulls,
   joint search and joint creation) and how fast it simulates them
@@ -300,6 +301,62 @@
        :frames frames :runs runs
        :same? (every? #(apply = (map :states %)) rounds)})))
 
+(declare progress)
+
+(defn- eyed-worm
+  "The worm with eyes, built, with `n` eyes (2 of its own, more copied
+  from its right eye)."
+  [n]
+  (let [^Node c (util/load-blender-model "Models/test-creature/worm-eyes.blend")
+        ^Node eyes (.getChild c "eyes")
+        ^Node right (.getChild eyes "right-eye")]
+    (doseq [i (range 3 (inc n))]
+      (.attachChild eyes (doto (.clone right) (.setName (str "eye-" i)))))
+    (body/body! c)))
+
+(defn- steps-per-second
+  "Wall-clock steps a second of a simulation of `creature` made with
+  `opts`: the median of three runs of `frames` steps, after `frames`/2
+  steps of warm-up."
+  [creature opts frames]
+  (let [s (sim/simulation creature (merge {:floor 0} opts))]
+    (try
+      (dotimes [_ (quot frames 2)] (sim/step! s))
+      (median (repeatedly 3 #(let [t0 (now)]
+                               (dotimes [_ frames] (sim/step! s))
+                               (/ frames (/ (ms-since t0) 1000.0)))))
+      (finally (sim/destroy! s)))))
+
+(defn run-eyes!
+  "Eye rows: for 1 and 4 eyes at 64x64 and 128x128 (RGB and depth),
+  eye images and steps a second, against the same worm stepped without
+  eyes; `frames` steps each."
+  [frames]
+  (let [_ (do (progress "eyes" "warming up")
+              (steps-per-second (eyed-worm 1) {:eyes {"right-eye" {}}} frames))
+        plain (do (progress "eyes" "without")
+                  (steps-per-second (eyed-worm 2) {} (* 4 frames)))]
+    (vec (for [size [64 128] n [1 4]]
+           (let [_ (progress "eyes" (str n " x " size "x" size))
+                 names (take n ["right-eye" "left-eye" "eye-3" "eye-4"])
+                 steps (steps-per-second (eyed-worm n)
+                                         {:eyes (into {} (for [e names] [e {:resolution [size size]}]))}
+                                         frames)]
+             {:eyes n :size size :images-per-s (* n steps) :steps-per-s steps
+              :step-ms (/ 1000.0 steps) :plain-step-ms (/ 1000.0 plain)
+              :eye-frame-ms (/ (- (/ 1000.0 steps) (/ 1000.0 plain)) n)})))))
+
+(defn eyes-table
+  "The eye rows as a text table."
+  [rows]
+  (str "eyes (worm-eyes, RGB + depth each step, wall clock)\n"
+       (format "%-5s %-8s %12s %10s %10s %14s %14s\n" "eyes" "size" "images/s" "steps/s"
+               "step ms" "no-eyes ms" "ms/eye frame")
+       (apply str (for [{:keys [eyes size images-per-s steps-per-s step-ms plain-step-ms eye-frame-ms]} rows]
+                    (format "%-5d %-8s %12.0f %10.0f %10.3f %14.3f %14.3f\n" eyes (str size "x" size)
+                            (double images-per-s) (double steps-per-s) (double step-ms)
+                            (double plain-step-ms) (double eye-frame-ms))))))
+
 (defn- heap-used
   "Bytes of heap in use now, garbage included."
   ^long []
@@ -352,11 +409,13 @@
           :sim {:sizes [10 100 300] :frames 300 :runs 3}
           :heap {:size 1000 :frames 120}
           :step-loop {:frames 600 :runs 5}
+          :rollouts {:worm 8 :hand 4 :runs 3}
           :blender-load-runs 11}
    :quick {:build {:sizes [10 100 300] :warmup 1 :runs 3}
            :sim {:sizes [10 100] :frames 120 :runs 1}
            :heap {:size 1000 :frames nil}
            :step-loop {:frames 120 :runs 1}
+           :rollouts {:worm 4 :hand 2 :runs 1}
            :blender-load-runs 3}})
 
 (def sim-budget
@@ -466,6 +525,89 @@
          (do (progress "heap" (str kind "-" size))
              (merge {:creature (str kind "-" size)}
                     (measure-heap! (generated kind size 0) frames))))))
+
+(defn rollout-specs
+  "`n` rollout specs of the Blender creature `name` (worm or hand), each
+  from its own seed."
+  [name n]
+  (vec (for [seed (range n)]
+         (case name
+           "worm" {:creature "Models/test-creature/worm.blend" :controller 'cortex.rollout/crawl-gait
+                   :seconds 5 :seed seed :start {:shift 0.3 :turn 0.2}}
+           "hand" {:creature "Models/test-creature/hand.blend" :controller 'cortex.rollout/sine-gait
+                   :seconds 2 :seed seed :start {:shift 0.3 :turn 0.2}}))))
+
+(defn measure-rollouts!
+  "Rollouts a second of `specs` on 1 and 2 threads (medians of `runs`
+  after a warm-up), the speed-up, the scaling efficiency, :same? when
+  every run gave the same results, and the heap each of eight
+  simulations of the first spec keeps while they are held at once."
+  [specs runs]
+  (let [go (fn [threads] (settle!) (timed #((requiring-resolve 'cortex.rollout/rollouts)
+                                            specs {:threads threads})))
+        _ (go 2)
+        rounds (vec (repeatedly runs #(mapv go [1 2])))
+        rate (fn [i] (/ (count specs) (/ (median (map (comp first #(nth % i)) rounds)) 1000.0)))
+        [r1 r2] (map rate [0 1])
+        simulation (requiring-resolve 'cortex.rollout/simulation)
+        checked ((requiring-resolve 'cortex.rollout/check-spec!) nil (first specs))
+        base (collected-heap-used)
+        held (vec (repeatedly 8 #(simulation checked)))
+        per (/ (- (collected-heap-used) base) 8.0)]
+    (run! sim/destroy! held)
+    {:rollouts (count specs) :seconds-each (:seconds (first specs))
+     :rate-1 r1 :rate-2 r2 :speedup (/ r2 r1) :efficiency (/ r2 (* 2 r1))
+     :mb-per-world (mb per)
+     :same? (apply = (map second (apply concat rounds))) :runs runs}))
+
+(defn measure-spark!
+  "Spark local[2] against rollouts on 2 threads for `specs`: the
+  session's start (:session-ms), the median job (:spark-ms) and
+  rollouts (:rollouts-ms) over `runs`, the overhead and :same?; or
+  :skipped without the spark profile."
+  [specs runs]
+  (if-let [run (try (requiring-resolve 'cortex.spark/run) (catch Throwable _ nil))]
+    (let [[start-ms s] (timed #((requiring-resolve 'cortex.spark/session) "local[2]"
+                                {"spark.ui.enabled" "false"}))
+          rollouts (requiring-resolve 'cortex.rollout/rollouts)]
+      (try
+        (run specs {:spark s})
+        (let [spark (median (repeatedly runs #(do (settle!) (first (timed (fn [] (run specs {:spark s})))))))
+              local (median (repeatedly runs #(do (settle!) (first (timed (fn [] (rollouts specs {:threads 2})))))))]
+          {:session-ms start-ms :spark-ms spark :rollouts-ms local
+           :overhead-ms (- spark local) :spark-ratio (/ spark local)
+           :same? (= (run specs {:spark s}) (rollouts specs {:threads 2})) :runs runs})
+        (finally (.close ^java.io.Closeable s))))
+    {:skipped "needs the spark profile: lein with-profile +spark bench"}))
+
+(defn run-rollouts!
+  "Rollout rows: the worm and the hand on 1 and 2 threads, and the
+  worm on Spark local[2]."
+  [{:keys [worm hand runs]}]
+  (vec (concat
+        (for [[name n] [["worm" worm] ["hand" hand]]]
+          (do (progress "rollouts" name)
+              (merge {:creature name} (measure-rollouts! (rollout-specs name n) runs))))
+        [(do (progress "rollouts" "worm on Spark local[2]")
+             (merge {:creature "worm, Spark local[2]" :rollouts worm}
+                    (measure-spark! (rollout-specs "worm" worm) runs)))])))
+
+(defn- cell
+  "`x` with `digits` decimals, or - when it is not a number."
+  [digits x]
+  (if (number? x) (format (str "%." digits "f") (double x)) "-"))
+
+(def rollout-columns
+  [["creature" :creature] ["rollouts" :rollouts] ["s each" :seconds-each]
+   ["1 thread /s" #(cell 2 (:rate-1 %))] ["2 threads /s" #(cell 2 (:rate-2 %))]
+   ["speed-up" #(cell 2 (:speedup %))] ["efficiency" #(cell 2 (:efficiency %))]
+   ["MB a world" #(cell 2 (:mb-per-world %))] ["same" :same?] ["runs" :runs]])
+
+(def spark-columns
+  [["creature" :creature] ["rollouts" :rollouts] ["session start ms" #(cell 0 (:session-ms %))]
+   ["Spark job ms" #(cell 0 (:spark-ms %))] ["rollouts ms" #(cell 0 (:rollouts-ms %))]
+   ["overhead ms" #(cell 0 (:overhead-ms %))] ["Spark/rollouts" #(cell 2 (:spark-ratio %))]
+   ["same" :same?] ["runs" :runs]])
 
 (defn- jme3-blender-loader
   "A function loading a .blend file (by path) with jme3-blender, from
@@ -605,7 +747,7 @@
 
 (defn report
   "The text of all the tables of a benchmark `result`."
-  [{:keys [build exponents sim heap step-loop blender-load targets machine]}]
+  [{:keys [build exponents sim heap step-loop blender-load targets machine rollouts]}]
   (str/join
    "\n\n"
    [(str "cortex benchmark, " (:when machine) ", " (:cores machine) " cores, "
@@ -620,6 +762,10 @@
     (str "3. Heap\n" (table heap-columns heap))
     (str "4. The step loop (cortex.sim) against bare Bullet, per CPU second: observing none, all\n"
          (table step-loop-columns step-loop))
+    (str "5. Many rollouts at once (wall clock), on 1 and 2 threads; heap per world held\n"
+         (table rollout-columns (remove #(re-find #"Spark" (:creature %)) rollouts))
+         "\nSpark local[2] against rollouts on 2 threads, the same specs\n"
+         (table spark-columns (filter #(re-find #"Spark" (:creature %)) rollouts)))
     (str ".blend load times, ms (medians by cortex.blender-bench's method)\n"
          (table (blender-load-columns blender-load) blender-load))
     (str "Targets\n" (table verdict-columns targets))]))
@@ -627,7 +773,7 @@
 (defn csv-rows
   "One [section creature segments metric value] row per number in
   `result`."
-  [{:keys [build sim heap step-loop exponents targets]}]
+  [{:keys [build sim heap step-loop exponents targets rollouts]}]
   (concat
    [["section" "creature" "segments" "metric" "value"]]
    (for [[section rows ks] [["build" build [:physical :targets :connect :sum :body :joints :runs]]
@@ -635,7 +781,11 @@
                                         :same? :frames :runs]]
                             ["heap" heap [:retained-mb :build-peak-mb :sim-peak-mb :max-heap-mb]]
                             ["step-loop" step-loop [:bare-cpu :none-cpu :all-cpu :none-ratio
-                                                    :all-ratio :same? :frames :runs]]]
+                                                    :all-ratio :same? :frames :runs]]
+                            ["rollouts" rollouts [:rollouts :seconds-each :rate-1 :rate-2 :speedup
+                                                  :efficiency :mb-per-world :session-ms :spark-ms
+                                                  :rollouts-ms :overhead-ms :spark-ratio :same?
+                                                  :skipped :runs]]]
          r rows
          k ks
          :when (contains? r k)]
@@ -697,9 +847,13 @@
         sim (run-sim! (:sim plan))
         heap (run-heap! (:heap plan))
         step-loop (run-step-loop! (:step-loop plan))
+        rollouts (run-rollouts! (:rollouts plan))
         blender-load (run-blender-load! (:blender-load-runs plan))
+        eyes (run-eyes! (get-in plan [:step-loop :frames]))
         result {:plan plan :build build :exponents (exponents build)
+                :rollouts rollouts
                 :sim sim :heap heap :step-loop step-loop :blender-load blender-load
+                :eyes eyes
                 :machine (assoc m :load-after (load-average))}]
     (assoc result :targets (verdicts result))))
 
@@ -717,6 +871,7 @@
         result (run-benchmark! (plans (:plan opts)))]
     (println (report result))
     (println)
+    (println (eyes-table (:eyes result)))
     (doseq [f (write-results! (:out opts) result)]
       (println "wrote" f))
     (println (format "benchmark took %.0f s" (/ (ms-since t0) 1000)))

@@ -1,3 +1,4 @@
+;; Generated from org/blender.org by lein tangle: edit the chapter, not this file.
 (ns cortex.blender-bench
   "Median load times: cortex's .blend reader against jme3-blender.
   Run with `lein run -m cortex.blender-bench [runs]`."

@@ -1,3 +1,4 @@
+;; Generated from org/literate.org by lein tangle: edit the chapter, not this file.
 (ns cortex.tangle
   "Write the source files that the org/ chapters hold, or check that
   they are already written.
@@ -5,7 +6,8 @@
   A chapter is an org file; each `#+begin_src LANG :tangle PATH` block
   belongs to the file at PATH, relative to the chapter's folder, as
   org-babel reads it. Blocks bound for one file are joined in the order
-  they appear, with one blank line between them. Emacs is not needed."
+  they appear, with one blank line between them, under a first line
+  that names the chapter (see `header`). Emacs is not needed."
   (:require [clojure.java.io :as io]
             [clojure.string :as str])
   (:import (java.io File)))
@@ -77,6 +79,30 @@
                       {:file (str chapter) :line (:line block)}))
       :else (.getCanonicalFile (io/file (.getParentFile (io/file chapter)) t)))))
 
+(def ^:private comment-starts
+  "How a line comment starts, by file extension; # for any other."
+  {"clj" ";;" "cljc" ";;" "cljs" ";;" "edn" ";;" "java" "//" "c" "//" "js" "//"})
+
+(defn header
+  "The first line of the file `target` generated from `chapter`: a
+  comment naming the chapter (as org/NAME.org) and asking that the
+  chapter be edited instead."
+  [chapter target]
+  (let [ext (second (re-find #"\.([^./]+)$" (str target)))
+        chapter (io/file chapter)]
+    (str (get comment-starts ext "#") " Generated from "
+         (.getName (.getParentFile (.getAbsoluteFile chapter))) "/" (.getName chapter)
+         " by lein tangle: edit the chapter, not this file.")))
+
+(defn- with-header
+  "`text`, the contents of `target`, with its header line first (after
+  a #! line, if it starts with one)."
+  [chapter target ^String text]
+  (let [[first-line more] (str/split text #"\n" 2)]
+    (if (str/starts-with? text "#!")
+      (str first-line "\n" (header chapter target) "\n" more)
+      (str (header chapter target) "\n" text))))
+
 (defn chapters
   "The org chapters in folder `dir`, in name order."
   [dir]
@@ -101,7 +127,8 @@
                       {:file (str f) :chapters names})))
     (into (sorted-map)
           (for [[f ps] (group-by first parts)]
-            [f (str (str/join "\n\n" (map #(nth % 2) ps)) "\n")]))))
+            [f (with-header (second (first ps)) f
+                 (str (str/join "\n\n" (map #(nth % 2) ps)) "\n"))]))))
 
 (defn drift
   "The target files whose contents differ from what the chapters in
@@ -137,7 +164,7 @@
          (str f)))))
 
 (defn -main
-  "lein tangle          write src/, test/ and java/ from org/
+  "lein tangle          write src/, test/, dev/ and java/ from org/
    lein tangle --check  exit 1 when any of them differs from org/"
   [& args]
   (if (= ["--check"] args)

@@ -1,3 +1,4 @@
+// Generated from org/blender.org by lein tangle: edit the chapter, not this file.
 package cortex;
 
 import clojure.java.api.Clojure;

@@ -1,3 +1,4 @@
+// Generated from org/physics-tab.org by lein tangle: edit the chapter, not this file.
 package cortex;
 
 import com.bulletphysics.dynamics.constraintsolver.HingeConstraint;
@@ -30,8 +31,36 @@ public class FrameHingeJoint extends PhysicsJoint {
         frameA.origin.set(Converter.convert(pivotA));
         Transform frameB = new Transform(Converter.convert(rotB));
         frameB.origin.set(Converter.convert(pivotB));
-        constraint = new HingeConstraint(nodeA.getObjectId(), nodeB.getObjectId(),
-                                         frameA, frameB);
+        constraint = new Metered(nodeA.getObjectId(), nodeB.getObjectId(), frameA, frameB);
+    }
+
+    /** jBullet's hinge, with an ImpulseMeter for its applied impulse. */
+    static final class Metered extends HingeConstraint {
+        final ImpulseMeter meter;
+
+        Metered(com.bulletphysics.dynamics.RigidBody a, com.bulletphysics.dynamics.RigidBody b,
+                Transform fa, Transform fb) {
+            super(a, b, fa, fb);
+            meter = new ImpulseMeter(a, b, fa.basis);
+        }
+
+        @Override
+        public void buildJacobian() {
+            meter.start();
+            super.buildJacobian();
+        }
+
+        @Override
+        public void solveConstraint(float timeStep) {
+            meter.before();
+            super.solveConstraint(timeStep);
+            meter.after();
+        }
+
+        @Override
+        public float getAppliedImpulse() {
+            return meter.rowMax();
+        }
     }
 
     private HingeConstraint hinge() {

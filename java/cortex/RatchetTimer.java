@@ -1,3 +1,4 @@
+// Generated from org/world.org by lein tangle: edit the chapter, not this file.
 package cortex;
 
 import com.jme3.system.Timer;

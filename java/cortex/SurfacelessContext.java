@@ -1,3 +1,4 @@
+// Generated from org/render.org by lein tangle: edit the chapter, not this file.
 package cortex;
 
 import com.jme3.input.JoyInput;
@@ -44,6 +45,14 @@ public final class SurfacelessContext extends LwjglContext implements Runnable {
     private long display = EGL_NO_DISPLAY;
     private long surface = EGL_NO_SURFACE;
     private long context = EGL_NO_CONTEXT;
+    /** Every context of this class shares the one surfaceless EGLDisplay,
+     *  and eglTerminate ends it for all of them: contexts made and ended
+     *  at once on several threads (simulations with eyes, see vision.org)
+     *  count their use of it under this lock, and the last one out
+     *  terminates it. */
+    private static final Object EGL_LOCK = new Object();
+    private static int eglUsers = 0;
+    private boolean counted = false;
 
     /** Keep the caller's settings, but render with jME's LWJGL OpenGL
      *  renderer: the CUSTOM name only served to find this class. */
@@ -93,6 +102,10 @@ public final class SurfacelessContext extends LwjglContext implements Runnable {
     }
 
     private void createEgl() {
+        synchronized (EGL_LOCK) { createEglLocked(); }
+    }
+
+    private void createEglLocked() {
         String clientExtensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
         if (clientExtensions == null || !clientExtensions.contains("EGL_MESA_platform_surfaceless")) {
             throw new IllegalStateException("EGL has no surfaceless platform (Mesa's EGL is needed; "
@@ -104,6 +117,8 @@ public final class SurfacelessContext extends LwjglContext implements Runnable {
         display = JNI.callPPP(getPlatformDisplay, SURFACELESS, 0L, 0L);
         check(display != EGL_NO_DISPLAY, "eglGetPlatformDisplayEXT(surfaceless)");
         check(eglInitialize(display, new int[1], new int[1]), "eglInitialize");
+        eglUsers++;
+        counted = true;
         check(eglBindAPI(EGL_OPENGL_API), "eglBindAPI(OpenGL)");
         int depth = settings.getDepthBits() > 0 ? settings.getDepthBits() : 24;
         int[] wanted = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
@@ -125,17 +140,20 @@ public final class SurfacelessContext extends LwjglContext implements Runnable {
     }
 
     private void destroyEgl() {
-        if (display != EGL_NO_DISPLAY) {
-            eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-            if (context != EGL_NO_CONTEXT) eglDestroyContext(display, context);
-            if (surface != EGL_NO_SURFACE) eglDestroySurface(display, surface);
-            eglTerminate(display);
-            eglReleaseThread();
-            GL.setCapabilities(null);
+        synchronized (EGL_LOCK) {
+            if (display != EGL_NO_DISPLAY) {
+                eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+                if (context != EGL_NO_CONTEXT) eglDestroyContext(display, context);
+                if (surface != EGL_NO_SURFACE) eglDestroySurface(display, surface);
+                if (counted && --eglUsers == 0) eglTerminate(display);
+                counted = false;
+                eglReleaseThread();
+                GL.setCapabilities(null);
+            }
+            display = EGL_NO_DISPLAY;
+            surface = EGL_NO_SURFACE;
+            context = EGL_NO_CONTEXT;
         }
-        display = EGL_NO_DISPLAY;
-        surface = EGL_NO_SURFACE;
-        context = EGL_NO_CONTEXT;
     }
 
     /** The frame loop: make the context, let the application initialise,

@@ -1,10 +1,11 @@
-"""Build the reference creatures assets/Models/test-creature/{worm,hand}.blend.
+"""Build the reference creatures assets/Models/test-creature/{worm,hand,worm-eyes}.blend.
 
-    blender -b --factory-startup --python scripts/blender/make_creatures.py -- [OUTDIR]
+    blender -b --factory-startup --python scripts/blender/make_creatures.py -- [OUTDIR [NAME ...]]
 
-OUTDIR defaults to assets/Models/test-creature in the repo.  Each .blend is
-saved uncompressed, and dump.py's JSON is written beside it (worm.json,
-hand.json).  Everything is built from numbers in this file; never edit the
+OUTDIR defaults to assets/Models/test-creature in the repo; NAMEs (worm,
+hand, worm-eyes) choose which creatures to build, all by default.  Each
+.blend is saved uncompressed, and dump.py's JSON is written beside it
+(worm.json, hand.json, worm-eyes.json).  Everything is built from numbers in this file; never edit the
 .blend files by hand.
 
 Conventions (what the Clojure body code reads):
@@ -108,17 +109,52 @@ def build_worm():
     # Different friction on the two ends (a gripping head, a sliding
     # tail): a worm symmetric in everything cannot crawl, since its one
     # hinge pushes both halves alike.  cortex reads "friction" per segment.
+    # The segments are half again as wide as they are tall (object scale
+    # 1.5 in Y): a round worm rolls over as it arches and crawls by
+    # chance; a flat one crawls every time (see org/sim.org).
     head = segment("worm-1", chamfered_prism_x("worm-1", half, 0.3, 0.2, 0.15),
                    (-c, 0.0, z), 1.0, skin_a)
     head["friction"] = 1.0
+    head.scale = (1.0, 1.5, 1.0)
     tail = segment("worm-2", chamfered_prism_x("worm-2", half, 0.3, 0.2, 0.15),
                    (c, 0.0, z), 1.0, skin_b)
-    tail["friction"] = 0.0
+    tail["friction"] = 0.1
+    tail.scale = (1.0, 1.5, 1.0)
     root = joints_root()
     # Bends up/down: axis Y.  With the right-hand rule a positive angle about
     # +Y turns +X toward -Z, so the second segment dips for positive angles.
     joint_empty("worm-joint", root, (0.0, 0.0, z),
                 hinge("(- (/ Math/PI 4))", "(/ Math/PI 4)", "0 1 0"))
+    update()
+
+
+# ------------------------------------------------------------- worm-eyes
+
+def build_worm_eyes():
+    """The worm with two eyes at the front of its head (worm-1, the end at
+    x = -2.015), looking ahead along -X, up +Z, under an empty "eyes":
+    `left-eye` a Blender camera (lens 20 mm on a 36 x 24 mm sensor, fit
+    AUTO: 83.97 degrees across a 64 x 48 image, clip 0.05 to 50), and
+    `right-eye` an empty with an `eye` property.  Each sits 0.035 in front
+    of the head's end cap, 2 units from worm-2."""
+    build_worm()
+    z = 0.55
+    root = new_object("eyes", None)
+    root.empty_display_type = "PLAIN_AXES"
+    ahead = (math.pi / 2, 0.0, math.pi / 2)   # a camera's -Z along world -X, its +Y up
+    cam = bpy.data.cameras.new("left-eye")
+    cam.lens = 20.0
+    cam.sensor_width = 36.0
+    cam.sensor_height = 24.0
+    cam.sensor_fit = "AUTO"
+    cam.clip_start = 0.05
+    cam.clip_end = 50.0
+    left = new_object("left-eye", cam, parent=root, location=(-2.05, 0.12, z), rotation=ahead)
+    left["eye"] = "{:resolution [64 48]}"
+    right = new_object("right-eye", None, parent=root, location=(-2.05, -0.12, z), rotation=ahead)
+    right.empty_display_type = "CONE"
+    right.empty_display_size = 0.1
+    right["eye"] = "{:fov 84 :resolution [64 48] :near 0.05 :far 50}"
     update()
 
 
@@ -196,11 +232,15 @@ def main():
         HERE, "..", "..", "assets", "Models", "test-creature")
     out = os.path.normpath(out)
     os.makedirs(out, exist_ok=True)
+    names = args[1:] or ["worm", "hand", "worm-eyes"]
+    builders = {"worm": build_worm, "hand": build_hand, "worm-eyes": build_worm_eyes}
+    unknown = [n for n in names if n not in builders]
+    if unknown:
+        sys.exit("no creature called %s; choose from %s" % (unknown, sorted(builders)))
     print("Blender", bpy.app.version_string, "->", out)
-    build_worm()
-    save(os.path.join(out, "worm.blend"))
-    build_hand()
-    save(os.path.join(out, "hand.blend"))
+    for name in names:
+        builders[name]()
+        save(os.path.join(out, name + ".blend"))
 
 
 if __name__ == "__main__":

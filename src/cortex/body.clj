@@ -1,3 +1,4 @@
+;; Generated from org/body.org by lein tangle: edit the chapter, not this file.
 (ns cortex.body
   "Give a creature loaded from Blender a physical body: a rigid body for
   every segment and a Bullet joint for every joint marker, as the
@@ -7,7 +8,8 @@
   `joints!` (segments joined), `joints` (the joint markers),
   `joint-targets` (the two segments a joint joins), `connect`,
   `joint-dispatch` (a multimethod: add joint types), `joint-types`,
-  `read-joint` (a joint description, read safely), `segments`, `mass`,
+  `read-joint` (a joint description, read safely), `read-description`
+  (any such property), `segments`, `mass`,
   `pivot`, `pivot-in-world`."
   (:require [clojure.edn :as edn]
             [clojure.string :as str]
@@ -435,27 +437,33 @@
   (the half-width of the smallest cube centred on the joint that touches
   the segment), nearest first, ties by name: the two nearest and every
   other segment within `window` of the second. When even a cube holding
-  the whole creature finds fewer than two, an error names the joint."
-  [index ^Spatial joint window]
-  (let [center (.getWorldTranslation joint)
-        limit (* 2 (max 0.01 (reach index center)))
-        r (loop [r 0.01]
-            (let [found (touching index center r)]
-              (cond (>= (count found) 2) r
-                    (> r limit)
-                    (throw (ex-info (str "joint " (pr-str (.getName joint))
-                                         ": found " (count found)
-                                         " segment(s) near it, a joint needs two")
-                                    {:joint (.getName joint)
-                                     :found (map segment-name found)}))
-                    :else (recur (* 2 r)))))
-        outer (+ r (double window))
-        measured (sort-by (juxt :distance :name)
-                          (for [g (touching index center outer)]
-                            {:geom g :name (segment-name g)
-                             :distance (reach-of g center outer)}))
-        d2 (double (:distance (second measured)))]
-    (vec (take-while #(<= (double (:distance %)) (+ d2 (double window))) measured))))
+  the whole creature finds fewer than two, an error names the joint.
+  With `need` and `what` (an eye, say, needs one segment), the `need`
+  nearest and every other within `window` of the last of them, the
+  error naming the marker as a `what`."
+  ([index joint window] (nearest-segments index joint window 2 "joint"))
+  ([index ^Spatial joint window need what]
+   (let [need (long need)
+         center (.getWorldTranslation joint)
+         limit (* 2 (max 0.01 (reach index center)))
+         r (loop [r 0.01]
+             (let [found (touching index center r)]
+               (cond (>= (count found) need) r
+                     (> r limit)
+                     (throw (ex-info (str what " " (pr-str (.getName joint))
+                                          ": found " (count found)
+                                          " segment(s) near it, a " what " needs "
+                                          (if (= 2 need) "two" need))
+                                     {(keyword what) (.getName joint)
+                                      :found (map segment-name found)}))
+                     :else (recur (* 2 r)))))
+         outer (+ r (double window))
+         measured (sort-by (juxt :distance :name)
+                           (for [g (touching index center outer)]
+                             {:geom g :name (segment-name g)
+                              :distance (reach-of g center outer)}))
+         dn (double (:distance (nth measured (dec need))))]
+     (vec (take-while #(<= (double (:distance %)) (+ dn (double window))) measured)))))
 
 (defn- ordered-pair
   "The two segments `geoms` in the order the joint's frame gives them."
@@ -575,28 +583,35 @@
 
 (def ^:private max-description-length 10000)
 
-(defn read-joint
-  "The joint description `text` (the `joint` custom property: a Clojure
-  map such as {:type :hinge :limit [0 (/ Math/PI 2)]}) as a map. Read
-  with the EDN reader, which cannot evaluate (#= is an error), then
-  evaluated by `evaluate`."
-  [^String text]
+(defn read-description
+  "The custom property `property` (\"joint\", \"eye\", ...) whose text
+  is `text`, a Clojure map such as {:type :hinge :limit [0 (/ Math/PI
+  2)]}, as a value. Read with the EDN reader, which cannot evaluate (#=
+  is an error), then evaluated by `evaluate`."
+  [property ^String text]
   (when-not (string? text)
-    (throw (ex-info (str "the joint property must be text, not " (pr-str text))
+    (throw (ex-info (str "the " property " property must be text, not " (pr-str text))
                     {:form text})))
   (when (> (count text) max-description-length)
-    (throw (ex-info (str "the joint property is " (count text)
-                         " characters long, more than any joint needs")
+    (throw (ex-info (str "the " property " property is " (count text)
+                         " characters long, more than any " property " needs")
                     {:length (count text)})))
   (let [form (try (edn/read-string {:readers {}} text)
                   (catch StackOverflowError _
-                    (throw (ex-info "the joint property is nested too deeply" {})))
+                    (throw (ex-info (str "the " property " property is nested too deeply") {})))
                   (catch Exception e
                     (throw (ex-info (str "cannot read " (pr-str text) ": " (ex-message e))
-                                    {:text text} e))))
-        value (try (evaluate form)
-                   (catch StackOverflowError _
-                     (throw (ex-info "the joint property is nested too deeply" {}))))]
+                                    {:text text} e))))]
+    (try (evaluate form)
+         (catch StackOverflowError _
+           (throw (ex-info (str "the " property " property is nested too deeply") {}))))))
+
+(defn read-joint
+  "The joint description `text` (the `joint` custom property: a Clojure
+  map such as {:type :hinge :limit [0 (/ Math/PI 2)]}) as a map, read
+  safely by `read-description`."
+  [^String text]
+  (let [value (read-description "joint" text)]
     (when-not (and (map? value) (keyword? (:type value)))
       (throw (ex-info (str "a joint description is a map with a :type keyword, not "
                            (pr-str text))
@@ -730,8 +745,22 @@
                        (.mult (body-frame control-b rotation) axis))
       (.setLimit (float low) (float high)))))
 
+(defn- cone-limits
+  "[frame-turn [twist y-limit z-limit]] for a cone of swing limits `xz`
+  (about Y) and `xy` (about Z) and `twist`: the turn about X that puts
+  the wider swing on Z (identity when it is there already), and the
+  three limits in the turned frame, none exactly 0, Y's at most 1.5."
+  [xz xy twist]
+  (let [swap? (> (double xz) (double xy))
+        turn (if swap?
+               (.toRotationMatrix (doto (Quaternion.) (.fromAngleAxis (float (/ Math/PI 2)) Vector3f/UNIT_X)))
+               (Matrix3f.))
+        [y z] (if swap? [xy xz] [xz xy])
+        open #(max 1e-4 (double %))]
+    [turn [(open twist) (min 1.5 (open y)) (open z)]]))
+
 (defmethod joint-dispatch :cone
-  [constraints control-a control-b pivot-a pivot-b rotation]
+  [constraints control-a control-b pivot-a pivot-b ^Matrix3f rotation]
   (let [xz (number-field constraints :limit-xz)
         xy (number-field constraints :limit-xy)
         twist (number-field constraints :twist)]
@@ -739,9 +768,14 @@
             :let [v (double (get constraints k))]
             :when (not (<= 0.0 v Math/PI))]
       (throw (angle-error (str "cone " k) (get constraints k) "[0, pi]")))
-    (doto (ConeJoint. control-a control-b pivot-a pivot-b
-                      (body-frame control-a rotation) (body-frame control-b rotation))
-      (.setLimit xz xy twist))))
+    (let [[^Matrix3f turn [t y z]] (cone-limits xz xy twist)
+          frame (.mult rotation turn)]
+      (doto (SixDofJoint. control-a control-b pivot-a pivot-b
+                          (body-frame control-a frame) (body-frame control-b frame) true)
+        (.setLinearLowerLimit Vector3f/ZERO)
+        (.setLinearUpperLimit Vector3f/ZERO)
+        (.setAngularLowerLimit (Vector3f. (float (- t)) (float (- y)) (float (- z))))
+        (.setAngularUpperLimit (Vector3f. (float t) (float y) (float z)))))))
 
 (defn pivot
   "`world-point` in the frame of `control`'s rigid body: relative to
@@ -953,13 +987,19 @@
 
 (defn body!
   "Give `creature` its whole physical body: solid segments joined as its
-  designer said. `opts` as for `physical!` and `joints!` (see
-  `default-options`). Returns the creature."
+  designer said, and its eyes, when it has an \"eyes\" node, fixed to
+  their segments (see cortex.vision/eyes!). `opts` as for `physical!`
+  and `joints!` (see `default-options`). Returns the creature."
   ([creature] (body! creature {}))
   ([^Node creature opts]
    (doto creature
      (physical! opts)
-     (joints! opts))))
+     (joints! opts))
+   ;; eyes (see vision.org) are fixed to their segments as built; the
+   ;; vision chapter is loaded only for a creature that has an eyes node
+   (when (instance? Node (.getChild creature "eyes"))
+     ((requiring-resolve 'cortex.vision/eyes!) creature opts))
+   creature))
 
 (defn- build-record
   [^Node creature]
@@ -1018,16 +1058,20 @@
   [{:name :mass :hull-points :hull-volume}], :joints [{:name :type :class
   :segments [first second] :pivot [x y z] (Blender's world axes)
   :distances {segment distance} :limits {...}}], :warnings [{:kind
-  :message ...}], :tolerance}."
+  :message ...}], :tolerance}, and for a creature with eyes :eyes
+  [{:name :kind :segment :distance :resolution :fov ...}] (see
+  cortex.vision/eyes!)."
   [^Node creature]
-  (let [{:keys [joints warnings tolerance]} (build-record creature)]
-    {:creature (.getName creature)
-     :segments (vec (for [g (segments creature)
-                          :when (.getControl ^Geometry g RigidBodyControl)]
-                      (segment-report g)))
-     :joints (mapv joint-report joints)
-     :warnings warnings
-     :tolerance tolerance}))
+  (let [{:keys [joints warnings tolerance]} (build-record creature)
+        eyes (:report (.getUserData creature "cortex.vision"))]
+    (cond-> {:creature (.getName creature)
+             :segments (vec (for [g (segments creature)
+                                  :when (.getControl ^Geometry g RigidBodyControl)]
+                              (segment-report g)))
+             :joints (mapv joint-report joints)
+             :warnings warnings
+             :tolerance tolerance}
+      eyes (assoc :eyes eyes))))
 
 (defn segment
   "The segment (a Geometry with a rigid body) of `creature` that Blender

@@ -1,3 +1,4 @@
+;; Generated from org/test-body.org by lein tangle: edit the chapter, not this file.
 (ns cortex.demo
   "The scene cortex's demos share: the reference creatures, a floor, a
   camera, lights and keys.

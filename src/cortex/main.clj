@@ -1,3 +1,4 @@
+;; Generated from org/main.org by lein tangle: edit the chapter, not this file.
 (ns cortex.main
   "What `lein run` does: the worm (or the hand) falls onto a floor, in a
   window when there is a display, otherwise drawn offscreen to PNG
@@ -14,7 +15,7 @@
             [cortex.util :as util]
             [cortex.world :as world])
   (:import (com.jme3.app SimpleApplication)
-           (com.jme3.math Vector3f)
+           (com.jme3.math ColorRGBA Vector3f)
            (java.nio.file CopyOption Files StandardCopyOption)))
 
 (set! *warn-on-reflection* true)
@@ -22,7 +23,8 @@
 (def creatures
   "The creatures lein run can show, by name: functions that load them."
   {"worm" demo/worm
-   "hand" demo/hand})
+   "hand" demo/hand
+   "worm-eyes" #(util/load-blender-model "Models/test-creature/worm-eyes.blend")})
 
 (defn named-creature
   "The creature called `creature-name` (see `creatures`), loaded from
@@ -73,7 +75,7 @@
 
 (defn report-text
   "A built creature's report (see cortex.body/report) as tables."
-  [{:keys [creature segments joints warnings tolerance]}]
+  [{:keys [creature segments joints warnings tolerance eyes]}]
   (str "creature " creature ": " (count segments) " segments, " (count joints)
        " joints (tolerance " (format "%.3f" (double tolerance)) ")\n\n"
        (table [[:name "segment"] [:mass "mass"] [:hull-points "hull points"]
@@ -89,6 +91,15 @@
                        :limits (str/join " " (for [[k v] (sort limits)]
                                                (str (name k) " " (pr-str v)))))))
        "\n\n"
+       (when (seq eyes)
+         (str (table [[:name "eye"] [:kind "kind"] [:segment "segment"] [:distance "distance"]
+                      [:size "image"] [:view "field of view"]]
+                     (for [{:keys [resolution fov size] :as e} eyes]
+                       (assoc e :size (str/join "x" resolution)
+                              :view (if fov
+                                      (format "%.1f x %.1f degrees" (double (first fov)) (double (second fov)))
+                                      (format "%.2f x %.2f units" (double (first size)) (double (second size)))))))
+              "\n\n"))
        (if (seq warnings)
          (str "warnings:\n" (str/join "\n" (map #(str "- " (:message %)) warnings)))
          "no warnings")))
@@ -115,6 +126,7 @@
    [nil "--headless" "draw offscreen even when there is a display"]
    [nil "--window" "open a window (needs a display)"]
    [nil "--report" "with a FILE.blend: print what body! builds of it, and stop"]
+   [nil "--eyes" "record what the creature's eyes see under the world (the worm with eyes unless a FILE is given)"]
    ["-h" "--help" "say how to use lein run"]])
 
 (defn- usage
@@ -139,9 +151,11 @@
   a file, :file."
   [args display?]
   (let [{:keys [options errors summary arguments]} (cli/parse-opts args cli-options)
-        {:keys [creature seconds out resolution headless window help report]} options
+        {:keys [creature seconds out resolution headless window help report eyes]} options
         [file & extra] arguments
-        creature (if file (str/replace (.getName (io/file file)) #"\.blend$" "") creature)]
+        creature (cond file (str/replace (.getName (io/file file)) #"\.blend$" "")
+                       (and eyes (= creature "worm")) "worm-eyes"
+                       :else creature)]
     (cond
       help {:action :help :message (usage summary)}
       errors {:action :error :message (str/join "\n" (conj errors "(lein run --help for help)"))}
@@ -160,7 +174,8 @@
                :record? (or (boolean headless) (not display?) (some? out))
                :fallback? (not window)
                :size resolution}
-        file (assoc :file file)))))
+        file (assoc :file file)
+        eyes (assoc :eyes? true)))))
 
 (defn- still!
   "Copy the last recorded frame in `dir` to NAME.png beside it; return
@@ -191,27 +206,53 @@
   [{:keys [creature file]}]
   (if file (util/load-blender-model file) (named-creature creature)))
 
+(defn- scenery
+  "Something for eyes to see, on the floor `drop` under built `creature`,
+  ahead of it along -x: a red box, a blue ball and a yellow box (lit or
+  not, they are plain colours; scenery, not physical)."
+  [creature drop]
+  (let [[[lx ly lz] [_ _ hz]] (demo/bounds creature)
+        top (- (double ly) (double drop))
+        z (/ (+ (double lz) (double hz)) 2)]
+    (util/nodify "scenery"
+                 [(util/box 0.4 0.4 0.4 :name "red box" :color ColorRGBA/Red :physical? false
+                            :position (Vector3f. (- lx 1.5) (+ top 0.4) (+ z 0.7)))
+                  (util/sphere 0.5 :name "blue ball" :color ColorRGBA/Blue :physical? false
+                               :position (Vector3f. (- lx 2.5) (+ top 0.5) (- z 1.2)))
+                  (util/box 0.6 0.6 0.6 :name "yellow box" :color ColorRGBA/Yellow :physical? false
+                            :position (Vector3f. (- lx 4.0) (+ top 0.6) (- z 0.3)))])))
+
 (defn- planned-world
-  "[world watched] for the plan; a creature from a file has its report
-  printed."
+  "[world watched creature] for the plan; a creature from a file has its
+  report printed."
   [{:keys [file] :as plan}]
   (let [creature (load-planned plan)
         [w seen] (demo-world creature (some? file))]
     (when file
       (println (report-text (body/report creature))))
-    [w seen]))
+    (when (:eyes? plan)
+      (.attachChild (.getRootNode ^SimpleApplication w) (scenery creature (drop-height creature (some? file)))))
+    [w seen creature]))
+
+(defn- record-planned!
+  "Record world `w` to the planned folder; with --eyes, with what the
+  creature's eyes see under each frame (see cortex.sight)."
+  [w creature {:keys [out eyes?]} opts]
+  (if eyes?
+    ((requiring-resolve 'cortex.sight/record-with-eyes!) w creature out opts)
+    (render/record! w out opts)))
 
 (defn- show-offscreen!
   "Draw the demo offscreen for the planned number of frames, recording
   every one in the planned folder, then make the still and videos, and
   say how the body held and settled."
   [{:keys [creature frames out size] :as plan}]
-  (let [[w seen] (planned-world plan)
+  (let [[w seen body] (planned-world plan)
         [width height] size
         start (System/nanoTime)]
     (println "no window: drawing" (format "%.1f" (/ frames (double frames-per-second)))
              "simulated seconds of" creature "offscreen at" (str width "x" height) "...")
-    (render/record! w out {:progress (render/progress-printer frames)})
+    (record-planned! w body plan {:progress (render/progress-printer frames)})
     (render/run-offscreen! w frames {:size size})
     (let [seconds (/ (- (System/nanoTime) start) 1e9)]
       (println (format "drew and wrote %d frames in %.1f s (%.0f a second)"
@@ -225,8 +266,8 @@
   display without OpenGL, say) and the plan allows it, draw offscreen
   instead."
   [{:keys [creature out size record? fallback?] :as plan}]
-  (let [[w seen] (planned-world plan)]
-    (when record? (render/record! w out))
+  (let [[w seen body] (planned-world plan)]
+    (when record? (record-planned! w body plan {}))
     (println "space: fire a ball | G/U: gravity on/off | H: show physics |"
              "W A S D Q Z, mouse: camera | Esc: quit")
     (try

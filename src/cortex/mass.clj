@@ -1,3 +1,4 @@
+;; Generated from org/mass.org by lein tangle: edit the chapter, not this file.
 (ns cortex.mass
   "Mass properties of a closed triangle mesh of uniform density: its
   volume, centre of mass and inertia tensor, and the tensor's principal

@@ -1,3 +1,4 @@
+;; Generated from org/muscle.org by lein tangle: edit the chapter, not this file.
 (ns cortex.muscle
   "Muscles: torques at a creature's joints for the next physics step.
 

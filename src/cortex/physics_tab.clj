@@ -1,3 +1,4 @@
+;; Generated from org/physics-tab.org by lein tangle: edit the chapter, not this file.
 (ns cortex.physics-tab
   "Build a creature from Blender's own rigid body physics: every object
   with a Rigid Body (Physics tab) becomes a jBullet rigid body, every
@@ -6,9 +7,12 @@
   property is needed.
 
   Entry points: `load-creature` (a .blend file with its Physics tab
-  settings), `physics-body!` (build the bodies and joints),
+  settings, any of its scenes), `physics-body!` (build the bodies and
+  joints of the Rigid Body World, simulated as Blender's world says),
   `warnings` (what could not be built as Blender would, as data),
-  `world-settings` (the file's Rigid Body World) and `gravity` (its
+  `broken-joints` (the joints that broke), `world-settings` (the
+  file's Rigid Body World), `simulation-settings` (its gravity,
+  substeps, solver iterations and time scale, as data), `gravity` (its
   gravity as a jME vector), `rigid-body` and `rigid-body-constraint`
   (an object's settings)."
   (:require [clojure.string :as str]
@@ -27,7 +31,9 @@
            (com.jme3.bullet.joints PhysicsJoint SixDofJoint SliderJoint)
            (com.jme3.math Matrix3f Vector3f)
            (com.jme3.scene Geometry Mesh Node Spatial)
-           (cortex FrameHingeJoint)
+           (com.bulletphysics.collision.dispatch CollisionObject)
+           (cortex FrameHingeJoint MeteredSixDofJoint MeteredSliderJoint)
+           (java.util.concurrent ConcurrentHashMap)
            (java.util.logging Logger)
            (jme3tools.optimize GeometryBatchFactory)))
 
@@ -140,6 +146,8 @@
   [x]
   (max 1e-4 (double x)))
 
+(declare sized-shape)
+
 (defn collision-shape
   "The jBullet collision shape for object Node `node` whose rigid body is
   `rb`: its shape type sized from the meshes of its Geometries at their
@@ -147,16 +155,22 @@
   GImpact triangle mesh for a moving body and a static triangle mesh
   (BVH) for a body that never moves; COMPOUND (Blender 2.9+) is not
   something jBullet can build from one object, so it becomes a hull
-  too. Returns [shape warnings]."
+  too. A mesh without vertices is a box of (nearly) zero size.
+  `static?`: whether the body is PASSIVE. Returns [shape warnings]."
   [^Node node rb static?]
   (let [geoms (object-geometries node)
         name (.getName node)
-        _ (when (empty? geoms)
-            (fail "rigid body" name "has no mesh to give it a shape" {}))
+        points (mapcat #(body/mesh-points (.getMesh ^Geometry %) (.getWorldScale ^Geometry %)) geoms)]
+    (if (empty? points)
+      ;; Blender gives a mesh without vertices a box of size zero
+      [(BoxCollisionShape. (Vector3f. (float (tiny 0)) (float (tiny 0)) (float (tiny 0)))) [] :empty]
+      (sized-shape node rb static? geoms points))))
+
+(defn- sized-shape
+  "`collision-shape` for an object with vertices."
+  [^Node node rb static? geoms points]
+  (let [name (.getName node)
         scale (.getWorldScale ^Geometry (first geoms))
-        points (mapcat #(body/mesh-points (.getMesh ^Geometry %) (.getWorldScale ^Geometry %)) geoms)
-        _ (when (empty? points)
-            (fail "rigid body" name "its mesh has no vertices" {}))
         half (mapv tiny (half-extents points))
         settings (shape-settings (:shape rb) half)
         hull #(body/hull-from-points (body/simplify-hull points body/max-hull-points))
@@ -201,10 +215,12 @@
 
 (defn rigid-body!
   "Give object Node `node` the jBullet rigid body its Blender rigid body
-  describes: shape, mass, friction, restitution and damping; an
-  animated (kinematic) body follows its spatial. The body goes on
-  `body-spatial`. An object that already has a body keeps it. Returns
-  {:object name :control c :spatial s :shape :mass :warnings}."
+  describes: shape, mass, friction, restitution and damping, collision
+  collections as collision groups, deactivation as the file says; an
+  animated (kinematic) body stays where it is (with a warning). The
+  body goes on `body-spatial`. An object that already has a body keeps
+  it. Returns {:object name :control c :spatial s :shape :mass
+  :warnings}."
   [^Node node]
   (let [name (.getName node)
         rb (rigid-body node)
@@ -216,23 +232,44 @@
     (if-let [c (.getControl spatial RigidBodyControl)]
       {:object name :control c :spatial spatial :shape (:shape rb) :mass (.getMass ^RigidBodyControl c) :warnings []}
       (let [mass (body-mass name rb)
-            [shape warnings] (collision-shape node rb (zero? mass))
-            c (RigidBodyControl. ^CollisionShape shape (float mass))]
+            [shape warnings empty] (collision-shape node rb (= "PASSIVE" (:type rb)))
+            c (RigidBodyControl. ^CollisionShape shape (float mass))
+            groups (:col-groups rb)]
         (.setFriction c (float (finite "rigid body" name rb :friction)))
         (.setRestitution c (float (finite "rigid body" name rb :restitution)))
         (.setDamping c (float (finite "rigid body" name rb :lin-damping))
                      (float (finite "rigid body" name rb :ang-damping)))
+        (when (integer? groups)
+          (.setCollisionGroup c (int (bit-and (long groups) 0xfffff)))
+          (.setCollideWithGroups c (int (bit-and (long groups) 0xfffff))))
         (when (:kinematic rb) (.setKinematic c true))
+        (when empty
+          (let [^com.bulletphysics.dynamics.RigidBody rbody (.getObjectId c)]
+            (.setInvInertiaDiagLocal rbody (javax.vecmath.Vector3f.))
+            (.updateInertiaTensor rbody)))
+        (when (contains? rb :use-deactivation)
+          (if (:use-deactivation rb)
+            (do (when (and (util/finite? (:lin-sleep-thresh rb)) (util/finite? (:ang-sleep-thresh rb)))
+                  (.setSleepingThresholds c (float (:lin-sleep-thresh rb)) (float (:ang-sleep-thresh rb))))
+                (when (and (:use-start-deactivated rb) (pos? mass))
+                  (.setActivationState (.getObjectId c) CollisionObject/WANTS_DEACTIVATION)))
+            (when-not (:kinematic rb)
+              (.setActivationState (.getObjectId c) CollisionObject/DISABLE_DEACTIVATION))))
         (.addControl spatial c)
         {:object name :control c :spatial spatial :shape (:shape rb) :mass mass
-         :warnings warnings}))))
+         :warnings (cond-> (vec warnings)
+                     (:kinematic rb)
+                     (conj (str "rigid body " (pr-str name) " is Animated (kinematic): cortex does"
+                                " not play its animation, so it stays where it is")))}))))
 
 (defn rigid-bodies!
   "Make every object of `creature` that has a Blender rigid body solid
-  (see `rigid-body!`). Returns the reports, in scene order."
-  [^Node creature]
-  (.updateGeometricState creature)
-  (mapv rigid-body! (rigid-body-objects creature)))
+  (see `rigid-body!`), or those of `nodes`. Returns the reports, in
+  scene order."
+  ([^Node creature] (rigid-bodies! creature (rigid-body-objects creature)))
+  ([^Node creature nodes]
+   (.updateGeometricState creature)
+   (mapv rigid-body! nodes)))
 
 (defn constraint-frame
   "The frame of constraint object `node` in the world, as Blender uses
@@ -280,7 +317,7 @@
   ^SixDofJoint [{:keys [a b pivot-a pivot-b rot-a rot-b]} lin ang]
   (let [[llo lhi] (six-dof-limits lin false)
         [alo ahi] (six-dof-limits ang true)]
-    (doto (SixDofJoint. a b pivot-a pivot-b rot-a rot-b true)
+    (doto (MeteredSixDofJoint. a b pivot-a pivot-b rot-a rot-b true)
       (.setLinearLowerLimit llo)
       (.setLinearUpperLimit lhi)
       (.setAngularLowerLimit alo)
@@ -292,7 +329,7 @@
   ^SliderJoint [{:keys [a b pivot-a pivot-b rot-a rot-b]} lin ang]
   (let [[llo lhi] (or lin [1.0 -1.0])
         [alo ahi] (or ang [1.0 -1.0])]
-    (doto (SliderJoint. a b pivot-a pivot-b rot-a rot-b true)
+    (doto (MeteredSliderJoint. a b pivot-a pivot-b rot-a rot-b true)
       (.setLowerLinLimit (float llo))
       (.setUpperLinLimit (float lhi))
       (.setLowerAngLimit (float alo))
@@ -481,9 +518,6 @@
   [name rbc]
   (let [label (str "rigid body constraint " (pr-str name) ": ")]
     (cond-> []
-      (:use-breaking rbc)
-      (conj (str label "jBullet cannot break joints; breaking threshold "
-                 (:breaking-threshold rbc) " is ignored"))
       (:use-override-solver-iterations rbc)
       (conj (str label "jBullet has no per-joint solver iterations; "
                  (:num-solver-iterations rbc) " iterations are ignored")))))
@@ -495,7 +529,8 @@
   transform, as in Blender. Its bodies collide with each other unless
   Blender's Disable Collisions is on. A disabled constraint makes no
   joint. Returns {:object :type :joint :bodies [ob1 ob2] :warnings}, plus
-  :springs for GENERIC_SPRING. Errors name the constraint object."
+  :springs for GENERIC_SPRING and :breaking-threshold for a joint that
+  breaks. Errors name the constraint object."
   [^Spatial node bodies]
   (let [name (.getName node)
         rbc (rigid-body-constraint node)
@@ -520,9 +555,12 @@
         (when-let [sc (:spring-control made)]
           (.addControl ^Spatial (:spatial (body-of name rbc bodies :ob2))
                        ^com.jme3.scene.control.Control sc))
-        (merge (dissoc made :spring-control)
-               {:object name :type type :joint joint :bodies [(:ob1 rbc) (:ob2 rbc)]
-                :warnings (into (vec warnings) (caveats name rbc))})))))
+        (cond-> (merge (dissoc made :spring-control)
+                       {:object name :type type :joint joint :bodies [(:ob1 rbc) (:ob2 rbc)]
+                        :warnings (into (vec warnings) (caveats name rbc))})
+          (:use-breaking rbc)
+          (assoc :breaking-threshold
+                 (finite "rigid body constraint" name rbc :breaking-threshold)))))))
 
 (defn constraints!
   "Make the joint of every rigid body constraint of `creature` (see
@@ -541,52 +579,14 @@
    (.updateGeometricState creature)
    (mapv #(constraint! % bodies) (constraint-objects creature))))
 
-(def ^:private ^Logger logger (Logger/getLogger "cortex.physics-tab"))
-
-(def ^:private warnings-key
-  "The user data under which `physics-body!` leaves its warnings."
-  "blender-physics-warnings")
-
-(defn build!
-  "Give `creature` (a Node loaded from Blender) the body Blender's Physics
-  tab describes: rigid bodies, then joints for its rigid body
-  constraints. A creature that also has custom-property joints (a
-  \"joints\" empty, see cortex.body) gets those too, by
-  `cortex.body/body!`, between the two. Returns {:creature :bodies
-  :joints :warnings}: the reports of `rigid-body!` and `constraint!`
-  and every warning about what jBullet cannot do."
-  [^Node creature]
-  (let [bodies (rigid-bodies! creature)
-        _ (when (seq (body/joints creature))
-            (body/body! creature))
-        joints (constraints! creature (into {} (map (juxt :object identity)) bodies))
-        warnings (vec (concat (mapcat :warnings bodies) (mapcat :warnings joints)))]
-    {:creature creature :bodies bodies :joints joints :warnings warnings}))
-
-(defn physics-body!
-  "Like `cortex.body/body!`, for a creature made in Blender's Physics
-  tab: build it (see `build!`), log the warnings, keep them as the
-  creature's user data \"blender-physics-warnings\" (a list of strings),
-  and return the creature."
-  [^Node creature]
-  (let [{:keys [warnings]} (build! creature)]
-    (doseq [w warnings] (.warning logger ^String w))
-    (.setUserData creature ^String warnings-key (java.util.ArrayList. ^java.util.Collection warnings))
-    creature))
-
-(defn warnings
-  "The warnings `physics-body!` left on `creature`."
-  [^Node creature]
-  (vec (.getUserData creature ^String warnings-key)))
-
 (defn world-settings
   "The Rigid Body World settings of the scene `creature` was loaded
   from, as the reader made them (see
   cortex.blender.rigid-body/rigid-body-world: :gravity, :time-scale,
-  :steps-per-second, :num-solver-iterations, :use-split-impulse ...),
-  or nil when the file has none. The loader leaves them on the scene
-  Node: they are looked for in `creature` and below it, then in the
-  Nodes above it."
+  :steps-per-second, :num-solver-iterations, :fps,
+  :collection-objects ...), or nil when the file has none. The loader
+  leaves them on the scene Node: they are looked for in `creature` and
+  below it, then in the Nodes above it."
   [^Spatial creature]
   (or (some #(.getUserData ^Spatial % ^String physics/world-key) (util/node-seq creature))
       (loop [^Spatial p (.getParent creature)]
@@ -605,10 +605,204 @@
       (.mult (util/blender-to-jme (util/vec3 g)) (float w))
       (Vector3f.))))
 
+(defn- substep-length
+  "The largest float a such that Java's float arithmetic gives
+  (int) ((float) x / a) >= k, for x = t/60 as a float: Bullet's fixed
+  step loop then runs exactly k substeps of a in a step of x (or more,
+  clamped to k)."
+  [t k]
+  (let [x (float (* (float (/ 1.0 60.0)) (float t)))]
+    (loop [a (float (/ x (float k)))]
+      (if (>= (int (float (/ (double x) (double a)))) (long k))
+        a
+        (recur (Math/nextDown a))))))
+
+(defn simulation-settings
+  "How Blender simulates the world of settings `world` (see
+  `world-settings`; Blender's defaults when nil), for a cortex step of
+  1/60 s: {:gravity [x y z] (jME axes, m/s^2), :substeps k (Bullet
+  steps per 1/60 s step), :step a (seconds of physics per substep:
+  time-scale / (60 k), a hair less so that float arithmetic always
+  gives k), :iterations n (solver iterations), :time-scale t, :blender
+  {:fps :substeps-per-frame :rate}} (Blender's frame rate, substeps per
+  frame and physics steps per second)."
+  [world]
+  (let [fps (double (or (:fps world) 24.0))
+        raw (or (:substeps-per-frame world) (:steps-per-second world))
+        new? (or (nil? world) (>= (long (or (:file-version world) 0)) 291)
+                 (contains? world :substeps-per-frame))
+        per-frame (if new? (max 1 (long (or raw 10))) (max 1 (Math/round (/ (double (or raw 60)) fps))))
+        rate (if new? (* per-frame fps) (double (max 1 (long (or raw 60)))))
+        k (max 1 (Math/round (/ rate 60.0)))
+        t (let [t (double (or (:time-scale world) 1.0))]
+            (if (and (util/finite? t) (pos? t)) t 1.0))
+        g (gravity world)]
+    {:gravity [(.x g) (.y g) (.z g)]
+     :substeps k
+     :step (substep-length t k)
+     :iterations (max 1 (long (or (:num-solver-iterations world) 10)))
+     :time-scale t
+     :blender {:fps fps :substeps-per-frame per-frame :rate rate}}))
+
+(def simulation-key
+  "The user data under which `physics-body!` leaves the creature's
+  `simulation-settings`."
+  "blender-simulation")
+
+(defn- simulation-control
+  "A physics control that applies `settings` (see `simulation-settings`;
+  nil applies none) to the space it joins, and removes each of
+  `breakable` ({:object :joint :breaking-threshold}) after the first
+  substep in which its applied impulse reaches its threshold, noting
+  it in `broken`, a java.util.Map (object name -> substep)."
+  [settings breakable broken]
+  (let [space (atom nil)
+        enabled (atom true)
+        substeps (atom 0)]
+    (reify
+      com.jme3.bullet.control.PhysicsControl
+      (setPhysicsSpace [this s]
+        (when-let [^com.jme3.bullet.PhysicsSpace old @space] (.removeTickListener old this))
+        (reset! space s)
+        (when-let [^com.jme3.bullet.PhysicsSpace s s]
+          (when settings
+            (let [{:keys [substeps step iterations]} settings]
+              (.setGravity s (util/vec3 (:gravity settings)))
+              (.setSolverNumIterations s (int iterations))
+              (.setAccuracy s (float step))
+              (.setMaxSubSteps s (int substeps))))
+          (.addTickListener s this)))
+      (getPhysicsSpace [_] @space)
+      (setEnabled [_ on] (reset! enabled (boolean on)))
+      (isEnabled [_] @enabled)
+      (cloneForSpatial [_ _] (simulation-control settings breakable (ConcurrentHashMap.)))
+      (setSpatial [_ _])
+      (update [_ _])
+      (render [_ _ _])
+      (write [_ _])
+      (read [_ _])
+      com.jme3.bullet.PhysicsTickListener
+      (prePhysicsTick [_ _ _])
+      (physicsTick [_ s _]
+        (let [n (swap! substeps inc)]
+          (when @enabled
+            (doseq [{:keys [object ^PhysicsJoint joint breaking-threshold]} breakable
+                    :when (and (not (.containsKey ^java.util.Map broken object))
+                               (>= (.getAppliedImpulse joint) (double breaking-threshold)))]
+              (.remove ^com.jme3.bullet.PhysicsSpace s joint)
+              (.destroy joint)
+              (.put ^java.util.Map broken object n))))))))
+
+(def ^:private ^Logger logger (Logger/getLogger "cortex.physics-tab"))
+
+(def ^:private warnings-key
+  "The user data under which `physics-body!` leaves its warnings."
+  "blender-physics-warnings")
+
+(def ^:private broken-key
+  "The user data under which `physics-body!` leaves the map of broken
+  joints."
+  "blender-broken-joints")
+
+(defn- members
+  "Of `nodes`, those whose names are in `names` and those that are not,
+  or all of them when `names` is nil (no collection to go by) or `all?`."
+  [nodes names all?]
+  (if (or all? (nil? names))
+    [nodes []]
+    (let [in (set names)]
+      [(filter #(in (.getName ^Spatial %)) nodes) (remove #(in (.getName ^Spatial %)) nodes)])))
+
+(defn- names-of [nodes] (mapv #(.getName ^Spatial %) nodes))
+
+(defn build!
+  "Give `creature` (a Node loaded from Blender) the body Blender's Physics
+  tab describes: rigid bodies, then joints for its rigid body
+  constraints, of the objects Blender simulates (the Rigid Body World's
+  collections), or of every object with settings when `opts` has
+  :all-rigid-bodies? true. A creature that also has custom-property
+  joints (a \"joints\" empty, see cortex.body) gets those too, by
+  `cortex.body/body!`, between the two. The creature's Node gets a
+  control that applies the world's `simulation-settings` to the space
+  it joins (unless :simulation? false) and breaks joints that reach
+  their breaking threshold. Returns {:creature :bodies :joints
+  :warnings :simulation :broken}: the reports of `rigid-body!` and
+  `constraint!`, every warning, the settings applied, and a map (a
+  java.util.Map, filled in as the world runs) of the joints broken so
+  far, constraint object name -> substep."
+  ([creature] (build! creature {}))
+  ([^Node creature {:keys [all-rigid-bodies? simulation?] :or {simulation? true}}]
+   (let [world (world-settings creature)
+         [body-nodes left] (members (rigid-body-objects creature) (:collection-objects world)
+                                    all-rigid-bodies?)
+         [con-nodes con-left] (members (constraint-objects creature) (:constraint-objects world)
+                                       all-rigid-bodies?)
+         bodies (rigid-bodies! creature body-nodes)
+         by-name (into {} (map (juxt :object identity)) bodies)
+         excluded (set (names-of left))
+         [con-nodes skipped] (let [out? #(some excluded ((juxt :ob1 :ob2) (rigid-body-constraint %)))]
+                               [(remove out? con-nodes) (filter out? con-nodes)])
+         _ (when (seq (body/joints creature))
+             (body/body! creature))
+         joints (mapv #(constraint! % by-name) (do (.updateGeometricState creature) con-nodes))
+         settings (when simulation? (simulation-settings world))
+         breakable (filter :breaking-threshold joints)
+         broken (ConcurrentHashMap.)
+         warnings (vec (concat
+                        (when (seq left)
+                          [(str "rigid bodies " (pr-str (names-of left)) " are not in the Rigid Body"
+                                " World's collection: Blender does not simulate them, and they are"
+                                " not built ({:all-rigid-bodies? true} builds them)")])
+                        (when (seq con-left)
+                          [(str "rigid body constraints " (pr-str (names-of con-left)) " are not in"
+                                " the Rigid Body World's constraints collection: not built")])
+                        (when (seq skipped)
+                          [(str "rigid body constraints " (pr-str (names-of skipped)) " join bodies"
+                                " that are not built: not built")])
+                        (when (and settings (> (double (:time-scale settings)) 1.0))
+                          [(str "the Rigid Body World's time scale is " (:time-scale settings)
+                                ": a cortex world steps at most 1/60 s of physics a frame; set its"
+                                " BulletAppState's speed to the time scale to follow it")])
+                        (mapcat :warnings bodies) (mapcat :warnings joints)))]
+     (.addControl creature ^com.jme3.scene.control.Control
+                  (simulation-control settings (vec breakable) broken))
+     {:creature creature :bodies bodies :joints joints :warnings warnings
+      :simulation settings :broken broken})))
+
+(defn physics-body!
+  "Like `cortex.body/body!`, for a creature made in Blender's Physics
+  tab: build it (see `build!`, which takes the same `opts`), log the
+  warnings, keep them as the creature's user data
+  \"blender-physics-warnings\" (a list of strings) and its
+  `simulation-settings` under `simulation-key`, and return the
+  creature."
+  ([creature] (physics-body! creature {}))
+  ([^Node creature opts]
+   (let [{:keys [warnings simulation broken]} (build! creature opts)]
+     (doseq [w warnings] (.warning logger ^String w))
+     (.setUserData creature ^String warnings-key (java.util.ArrayList. ^java.util.Collection warnings))
+     (when simulation (.setUserData creature ^String simulation-key simulation))
+     (.setUserData creature ^String broken-key broken)
+     creature)))
+
+(defn warnings
+  "The warnings `physics-body!` left on `creature`."
+  [^Node creature]
+  (vec (.getUserData creature ^String warnings-key)))
+
+(defn broken-joints
+  "The joints of `creature` (built by `physics-body!`) that broke so far:
+  constraint object name -> the substep (counted from the world's
+  start) after which it broke."
+  [^Node creature]
+  (into {} (.getUserData creature ^String broken-key)))
+
 (defn load-creature
   "Load the .blend file at `path` as a creature, with cortex's reader,
   which leaves every object's Blender physics on its Node (see
   `rigid-body`, `rigid-body-constraint`) and the scene's Rigid Body
-  World on the scene Node (see `world-settings`); not yet physical."
-  ^Node [path]
-  (blender/load-blender-model path))
+  World on the scene Node (see `world-settings`); not yet physical.
+  `opts` as for cortex.blender/load-blender-model: {:scene \"Game\"}
+  loads that scene."
+  (^Node [path] (load-creature path {}))
+  (^Node [path opts] (blender/load-blender-model path opts)))

@@ -1,3 +1,4 @@
+;; Generated from org/proprioception.org by lein tangle: edit the chapter, not this file.
 (ns cortex.proprioception
   "Proprioception: how each joint of a creature built by
   cortex.body/body! is bent, and how fast, read from its rigid bodies.

@@ -1,11 +1,12 @@
+;; Generated from org/render.org by lein tangle: edit the chapter, not this file.
 (ns cortex.render
   "Worlds people can see: started in a window when there is a display,
   or run offscreen for an exact number of frames with real OpenGL and
   no window; and any world's frames recorded to PNG files, then to an
   MP4 and a GIF with ffmpeg.
 
-  Entry points: `start-window!`, `run-offscreen!`, `await-world!`,
-  `record!`, `make-videos!`, `frames-in`, `display?`."
+  Entry points: `start-window!`, `start-offscreen!`, `run-offscreen!`,
+  `await-world!`, `record!`, `make-videos!`, `frames-in`, `display?`."
   (:require [clojure.java.io :as io]
             [clojure.java.shell :as shell]
             [clojure.string :as str]
@@ -110,33 +111,44 @@
                                    :timeout-ms timeout-ms})))
 
 (defn start-window!
-  "Open `world` in a window (OpenGL through LWJGL 3) and return it
-  without waiting. Options: :size [width height] of the window and
-  :fps, the most frames a second it draws (default 60, so that a
-  fixed-step world runs at about the speed of life)."
+  "Open `world` in a window (OpenGL through LWJGL 3) and return it at
+  once, the world running on a thread of its own until the window is
+  closed, Escape is pressed or cortex.world/stop! is called. Options:
+  :size [width height] of the window and :fps, the most frames a second
+  it draws (default 60, so that a fixed-step world runs at about the
+  speed of life). Throws an ex-info, opening nothing, when there is no
+  display (see `display?`)."
   ([world] (start-window! world {}))
   ([^SimpleApplication world {:keys [size fps] :or {fps 60}}]
+   (let [display (System/getenv "DISPLAY")]
+     (when-not (display? display)
+       (throw (ex-info (str "no display to open a window on ("
+                            (if (str/blank? display)
+                              "DISPLAY is not set"
+                              (str "DISPLAY=" display " does not answer"))
+                            "): draw offscreen with run-offscreen! or start-offscreen!")
+                       {:display display}))))
    (doto (configure! world AppSettings/LWJGL_OPENGL2 size)
-     (.setFrameRate (int fps))
      (.setVSync false))
-   (.start world JmeContext$Type/Display)
-   world))
+   (world/start! world {:context-type JmeContext$Type/Display :fps fps})))
+
+(defn start-offscreen!
+  "Start `world` drawing offscreen (see `run-offscreen!`) and return it
+  at once; it runs, as fast as it can, until cortex.world/stop! is
+  called. Options: :size [width height] of the frames. Returns the
+  world."
+  ([world] (start-offscreen! world {}))
+  ([world {:keys [size]}]
+   (configure! world surfaceless-renderer size)
+   (world/start! world {:context-type JmeContext$Type/OffscreenSurface})))
 
 (defn await-world!
   "Block until a started `world` has been torn down (its window closed,
-  or Escape pressed) and its thread has ended. Throws an ex-info if it
-  failed. Returns the world."
+  Escape pressed, or stopped) and its thread has ended. Throws an
+  ex-info if it failed. Returns the world. The same as
+  cortex.world/await!."
   [world]
-  (loop []
-    (when-not (deref (:done @world) 200 false)
-      (let [{:keys [error ^Thread thread]} @world]
-        (when-not (and error (not (some-> thread .isAlive)))
-          (recur)))))
-  (some-> ^Thread (:thread @world) (.join 10000))
-  (when-let [e (:error @world)]
-    (throw (ex-info (str "world failed after " (:frames @world) " frames: " (ex-message e))
-                    {:frames (:frames @world)} e)))
-  world)
+  (world/await! world))
 
 (defn bgra->image!
   "Copy a frame read from OpenGL as BGRA8 (bottom row first) into
@@ -267,14 +279,17 @@
 
 (defn progress-printer
   "A progress function for `record!` that keeps a counter up to date on
-  one line of standard error: at the first frame, every `every` frames,
-  and when the recording is done (then ending the line)."
+  one line of *err* (as it is bound where the printer is made, so the
+  counter reaches the REPL that asked for the recording): at the first
+  frame, every `every` frames, and when the recording is done (then
+  ending the line)."
   ([] (progress-printer nil))
   ([total] (progress-printer total 10))
   ([total every]
-   (let [show! (fn [n end]
-                 (.print System/err (str "\r" (progress-line n total) end))
-                 (.flush System/err))]
+   (let [^java.io.Writer err *err*
+         show! (fn [n end]
+                 (.write err (str "\r" (progress-line n total) end))
+                 (.flush err))]
      (fn
        ([n]
         (when (or (= n 1) (zero? (mod n every)))
@@ -288,16 +303,18 @@
   frames an earlier recording left there. Options: :progress, a
   function called with the number of frames written so far after each
   frame, and with that number and true at the end (default: a counter
-  on standard error, see `progress-printer`; nil for none). Call it
+  on standard error, see `progress-printer`; nil for none) and
+  :decorate, a function of each frame (a BufferedImage) returning the
+  picture to write instead (cortex.sight adds what eyes see). Call it
   from a setup function or before the world starts. Throws an ex-info
   when `dir` cannot be written. Returns the world."
   ([world dir] (record! world dir {}))
-  ([world dir {:keys [progress] :or {progress (progress-printer)}}]
+  ([world dir {:keys [progress decorate] :or {progress (progress-printer) decorate identity}}]
    (let [folder (prepare-folder! dir)
          n (atom 0)]
      (grab-frames! world
                    (fn [image]
-                     (write-png! image (frame-file folder (swap! n inc)))
+                     (write-png! (decorate image) (frame-file folder (swap! n inc)))
                      (when progress (progress @n)))
                    (fn []
                      (when (and progress (pos? @n))

@@ -1,9 +1,10 @@
+;; Generated from org/sense.org by lein tangle: edit the chapter, not this file.
 (ns cortex.sense
   "What senses share: finding the marker nodes a creature's designer
   placed in Blender, and reading the data attached to them.
 
   Entry points: `meta-data` (an object's custom property),
-  `sense-nodes` (the markers under a named parent)."
+  `sense-nodes` (the markers under a named parent), `camera-key`."
   (:import (com.jme3.scene Geometry Node Spatial)))
 
 (set! *warn-on-reflection* true)
@@ -17,6 +18,12 @@
     (if (and (nil? v) (instance? Geometry spatial) (.getParent spatial))
       (.getUserData (.getParent spatial) (str key))
       v)))
+
+(def camera-key
+  "The user data under which a Blender camera object's Node keeps its
+  settings: {:type :lens :sensor-width :sensor-height :sensor-fit
+  :clip-start :clip-end :ortho-scale :shift-x :shift-y}."
+  "cortex.blender.camera")
 
 (defn sense-nodes
   "A function of a creature that returns the children of the creature's

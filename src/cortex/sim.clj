@@ -1,3 +1,4 @@
+;; Generated from org/sim.org by lein tangle: edit the chapter, not this file.
 (ns cortex.sim
   "A step loop for a creature: build a simulation, then call `step!`
   with each step's actions, without jME's application or render thread.
@@ -6,7 +7,8 @@
   Entry points: `simulation`, `step!`, `observe`, `sync!` (copy the
   bodies to the scene graph), `world` (a cortex world that shows a
   simulation and steps it, for windows and cortex.render's recording),
-  `steps`, `sim-time`, `destroy!`."
+  `steps`, `sim-time`, `last-efforts` (the torques the last step applied),
+  `destroy!`."
   (:require [cortex.body :as body]
             [cortex.muscle :as muscle]
             [cortex.proprioception :as p]
@@ -42,14 +44,19 @@
                  PhysicsSpace$BroadphaseType/DBVT))
 
 (defn floor
-  "A static grey box named \"floor\", 40 by 40 units, its top at `height`."
-  ^Geometry [height]
-  (util/box 20 0.5 20 :position (Vector3f. 0 (- (float height) 0.5) 0)
-            :color ColorRGBA/Gray :mass 0 :name "floor"))
+  "A static grey box named \"floor\", 400 by 400 units (room for a
+  hundred-segment chain), its top at `height`, of friction `friction`
+  (0.5, Bullet's default, when not given). `spec` is the height, or
+  {:height h :friction f}."
+  ^Geometry [spec]
+  (let [{:keys [height friction] :or {friction 0.5}} (if (map? spec) spec {:height spec})]
+    (util/box 200 0.5 200 :position (Vector3f. 0 (- (float height) 0.5) 0)
+              :color ColorRGBA/Gray :mass 0 :name "floor" :friction friction)))
 
 (def all-observations
-  "Everything a step can observe."
-  #{:joints :segments :touch})
+  "Everything a step can observe (:eyes only in a simulation asked for
+  eyes, see `simulation`)."
+  #{:joints :segments :touch :eyes})
 
 (defn- physical-segments
   "[name geometry rigid-body] of each physical segment under `node`."
@@ -74,8 +81,14 @@
   [{:keys [gravity floor observe] :as opts}]
   (when-not (and (sequential? gravity) (= 3 (count gravity)) (every? util/finite? gravity))
     (throw (ex-info (str ":gravity must be [x y z], finite numbers, not " (pr-str gravity)) opts)))
-  (when-not (or (nil? floor) (util/finite? floor))
-    (throw (ex-info (str ":floor must be a height or nil, not " (pr-str floor)) opts)))
+  (when-not (or (nil? floor) (util/finite? floor)
+                (and (map? floor) (util/finite? (:height floor))
+                     (or (nil? (:friction floor))
+                         (and (util/finite? (:friction floor)) (not (neg? (:friction floor)))))
+                     (empty? (dissoc floor :height :friction))))
+    (throw (ex-info (str ":floor must be a height, {:height h :friction f} or nil, not "
+                         (pr-str floor))
+                    opts)))
   (when-not (and (coll? observe) (every? all-observations observe))
     (throw (ex-info (str ":observe must be a subset of " (pr-str all-observations)
                          ", not " (pr-str observe))
@@ -90,8 +103,11 @@
   cortex.body/body! unless it has one) in a new PhysicsSpace, with
   `opts`: :gravity [x y z] (default [0 -9.81 0]), :floor (height of
   the top of a static floor, or nil: the default), :observe (a subset
-  of #{:joints :segments :touch}, what `step!` returns besides :time;
-  all by default). Use it from one thread at a time."
+  of #{:joints :segments :touch :eyes}, what `step!` returns besides
+  :time; all by default), :eyes (true, or a map of eye name to options:
+  what the creature's eyes see is observed too, drawn offscreen on a
+  GL context of the simulation's own; see cortex.sight and the vision
+  chapter). Use it from one thread at a time; `destroy!` frees it."
   ([creature] (simulation creature {}))
   ([^Node creature opts]
    (let [{:keys [gravity floor observe] :as opts}
@@ -121,7 +137,12 @@
       :object-names (identity-map (for [[n _ rb] (when floor-geom (physical-segments root))
                                         :when (= n "floor")]
                                     [rb n]))
-      :steps (long-array 1)})))
+      :steps (long-array 1)
+      :last-efforts (object-array 1)
+      ;; eyes (vision.org): loaded only when asked for, so that a
+      ;; simulation without eyes loads no OpenGL
+      :sight (when-let [eyes (:eyes opts)]
+               ((requiring-resolve 'cortex.sight/open!) creature root eyes))})))
 
 (defn steps
   "How many steps `sim` has taken."
@@ -143,13 +164,18 @@
      :velocity (triple (.getLinearVelocity rb v))
      :angular-velocity (triple (.getAngularVelocity rb v))}))
 
+(declare sync!)
+
 (defn observe
   "What `sim` senses now: :time, and each of `parts` (by default its
   :observe): :joints (proprioception), :segments ({name {:position
-  :rotation :velocity :angular-velocity}}, jME's world axes) and :touch."
+  :rotation :velocity :angular-velocity}}, jME's world axes), :touch and,
+  with eyes, :eyes (see cortex.sight/see!)."
   ([sim] (observe sim (:observe sim)))
-  ([{:keys [sensors segments space segment-names object-names] :as sim} parts]
+  ([{:keys [sensors segments space segment-names object-names sight] :as sim} parts]
    (cond-> {:time (sim-time sim)}
+     (and sight (contains? parts :eyes))
+     (assoc :eyes (do (sync! sim) ((requiring-resolve 'cortex.sight/see!) sight)))
      (contains? parts :joints) (assoc :joints (p/read-joints sensors))
      (contains? parts :segments)
      (assoc :segments (into {} (for [[n rb] segments] [n (segment-state rb)])))
@@ -161,13 +187,24 @@
   `observe`). Bad actions throw, naming the joint, before anything is
   applied or stepped."
   ([sim] (step! sim nil))
-  ([{:keys [^PhysicsSpace space muscles ^longs steps] :as sim} actions]
-   (when (seq actions)
-     (muscle/apply-efforts! muscles (muscle/efforts muscles actions)))
+  ([{:keys [^PhysicsSpace space muscles ^longs steps ^objects last-efforts] :as sim} actions]
+   (let [es (when (seq actions) (muscle/efforts muscles actions))]
+     (when es (muscle/apply-efforts! muscles es))
+     (aset last-efforts 0 es))
    (.update space (float tpf) (int max-sub-steps))
    (.distributeEvents space)
    (aset steps 0 (inc (aget steps 0)))
    (observe sim)))
+
+(defn last-efforts
+  "The torques the last `step!` of `sim` applied, clamped, by joint name
+  (see cortex.muscle/efforts: N.m for a hinge, [x y z] in the joint's
+  frame, Blender's axes, otherwise); nil before the first step and after
+  a step without actions. Times the joint velocities of the observation
+  that step returned, they are the muscles' power (cortex.rollout sums
+  it into the energy a rollout used)."
+  [{:keys [^objects last-efforts]}]
+  (aget last-efforts 0))
 
 (defn sync!
   "Copy every body's place and turn to its Geometry, as each
@@ -181,8 +218,9 @@
   root)
 
 (defn destroy!
-  "Free `sim`'s physics space."
-  [{:keys [^PhysicsSpace space]}]
+  "Free `sim`'s physics space, and its eyes' GL context."
+  [{:keys [^PhysicsSpace space sight]}]
+  (when sight ((requiring-resolve 'cortex.sight/close!) sight))
   (.destroy space))
 
 (defn world

@@ -1,3 +1,4 @@
+;; Generated from org/touch.org by lein tangle: edit the chapter, not this file.
 (ns cortex.touch
   "Touch: after a physics step, what each segment touches and how hard,
   read from jBullet's contact manifolds.

@@ -1,3 +1,4 @@
+;; Generated from org/util.org by lein tangle: edit the chapter, not this file.
 (ns cortex.util
   "Small helpers the rest of cortex leans on: walking scene graphs,
   making simple physical shapes, lights, coordinate changes between
@@ -115,11 +116,15 @@
   "Load a .blend file as a jME Node: `model` is an asset name such as
   \"Models/test-creature/worm.blend\" (under assets/ or on the
   classpath) or a file's path; `am` an AssetManager (the shared one when
-  not given). Errors are ex-info naming the file. The reader,
-  cortex.blender, is loaded on the first call."
+  not given); `opts` a map, {:scene \"Game\"} to load that scene rather
+  than the one the file was saved showing. Forms: (model), (model
+  opts), (am model), (am model opts). Errors are ex-info naming the
+  file. The reader, cortex.blender, is loaded on the first call."
   ([model] ((requiring-resolve 'cortex.blender/load-blender-model) model))
-  ([^AssetManager am model]
-   ((requiring-resolve 'cortex.blender/load-blender-model) am model)))
+  ([am-or-model model-or-opts]
+   ((requiring-resolve 'cortex.blender/load-blender-model) am-or-model model-or-opts))
+  ([^AssetManager am model opts]
+   ((requiring-resolve 'cortex.blender/load-blender-model) am model opts)))
 
 (def ^:private shape-defaults
   {:name "shape"

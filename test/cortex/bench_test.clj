@@ -1,3 +1,4 @@
+;; Generated from org/bench.org by lein tangle: edit the chapter, not this file.
 (ns cortex.bench-test
   (:require [clojure.string :as str]
             [clojure.test :refer [deftest is testing]]
@@ -71,6 +72,14 @@
   (is (< (Math/abs (- 2.0 (bench/fit-exponent (for [n [10 100 1000]] [n (* 3 n n)])))) 1e-9))
   (is (< 1.0 (bench/nlogn-exponent [10 100 300 1000]) 1.5))
   (is (nil? (bench/fit-exponent [[10 1.0]]))))
+
+(deftest rollouts-are-measured
+  (let [[worm hand spark] (bench/run-rollouts! {:worm 2 :hand 1 :runs 1})]
+    (is (= ["worm" "hand"] (map :creature [worm hand])))
+    (is (every? :same? [worm hand]) "1 and 2 threads give the same results")
+    (is (every? #(pos? (:rate-1 %)) [worm hand]))
+    (is (< 0.0 (:mb-per-world worm) 50.0))
+    (is (or (:skipped spark) (:same? spark)))))
 
 (deftest output
   (is (= "a,\"b,c\",\"say \"\"hi\"\"\"\n" (bench/csv [["a" "b,c" "say \"hi\""]])))

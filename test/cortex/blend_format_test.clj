@@ -1,3 +1,4 @@
+;; Generated from org/blend-format.org by lein tangle: edit the chapter, not this file.
 (ns cortex.blend-format-test
   (:require [clojure.test :refer [deftest is testing]]
             [cortex.blender.file :as file])

@@ -1,3 +1,4 @@
+;; Generated from org/blender-mesh.org by lein tangle: edit the chapter, not this file.
 (ns cortex.blender-mesh-test
   (:require [clojure.test :refer [deftest is testing]]
             [cortex.blender.file :as file]

@@ -1,3 +1,4 @@
+;; Generated from org/blender-scene.org by lein tangle: edit the chapter, not this file.
 (ns cortex.blender-scene-test
   (:require [clojure.test :refer [deftest is testing]]
             [cortex.blender.math :as m]

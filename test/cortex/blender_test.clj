@@ -1,3 +1,4 @@
+;; Generated from org/blender.org by lein tangle: edit the chapter, not this file.
 (ns cortex.blender-test
   (:require [clojure.test :refer [deftest is testing]]
             [clojure.java.io :as io]
@@ -381,6 +382,52 @@
       (let [^Node again (.loadModel am "Models/test-creature/worm.blend")]
         (is (not (identical? worm again)))
         (is (= 1.0 (sense/meta-data (.getChild again "worm-2") "mass")))))))
+
+(deftest poses-are-computed
+  (let [{:keys [warnings objects]} (:scene-data (blender/read-blend "test/fixtures/poses/stale-pose.blend"))]
+    (is (= 2 (count warnings)))
+    (is (some #(re-find #"bone \"held\" of armature \"rig-c\" has constraints" %) warnings))
+    (is (some #(re-find #"bone \"driven\" of armature \"rig-c\" has drivers" %) warnings))
+    (testing "the loader keeps the warnings on the root Node"
+      (is (= warnings (vec (.getUserData ^Node (blender/load-blender-model "test/fixtures/poses/stale-pose.blend")
+                                         ^String blender/warnings-key)))))
+    (testing "every child of a bone is where Blender puts it, though the saved poses are stale"
+      (let [theirs (into {} (map (juxt #(get % "name") #(get % "matrix_world")))
+                         (get (read-json (slurp "test/fixtures/poses/stale-pose.json")) "objects"))
+            bone-children (filter #(= 7 (:partype %)) objects)]
+        (is (= 11 (count bone-children)))
+        (doseq [o bone-children]
+          (is (close? (theirs (:name o)) (:world o) 1e-5) (:name o)))))))
+
+(deftest scenes-can-be-chosen
+  (let [f "test/fixtures/poses/scenes.blend"
+        names (fn [^Node root] (set (keys (object-nodes root))))
+        game #{"floor" "player" "crate"}]
+    (is (= [{:name "Empty" :objects 0 :meshes 0 :current? false}
+            {:name "Game" :objects 3 :meshes 3 :current? false}
+            {:name "Menu" :objects 2 :meshes 0 :current? true}]
+           (blender/scenes f)))
+    (testing "the saved scene by default, with a warning that says how to choose"
+      (let [{:keys [scene warnings]} (:scene-data (blender/read-blend f))]
+        (is (= "Menu" scene))
+        (is (re-find #"scene \"Menu\" has no mesh objects; scene \"Game\" has 3.*\{:scene \"Game\"\}"
+                     (first warnings)))))
+    (testing "every form of load-blender-model takes the scene"
+      (is (= game (names (blender/load-blender-model f {:scene "Game"}))))
+      (is (= game (names (blender/load-blender-model (util/asset-manager) f {:scene "Game"}))))
+      (is (= game (names (util/load-blender-model f {:scene "Game"}))))
+      (is (= game (names (util/load-blender-model (util/asset-manager) f {:scene "Game"}))))
+      (is (= #{"menu-camera" "menu-title"} (names (util/load-blender-model f))))
+      (is (= #{"menu-camera" "menu-title"} (names (util/load-blender-model (util/asset-manager) f)))))
+    (testing "an asset, by name, with options"
+      (is (= "Scene" (.getName ^Spatial (first (.getChildren ^Node (blender/load-blender-model
+                                                                    "Models/test-creature/worm.blend"
+                                                                    {:scene "Scene"})))))))
+    (testing "a scene chosen is that scene, even empty; an unknown one is an error naming the scenes"
+      (is (empty? (names (blender/load-blender-model f {:scene "Empty"}))))
+      (is (re-find #"no scene named \"Nope\"; the file has \[\"Empty\" \"Game\" \"Menu\"\]"
+                   (try (blender/load-blender-model f {:scene "Nope"}) ""
+                        (catch ExceptionInfo e (ex-message e))))))))
 
 (def ^:dynamic *tmp*
   "Folder for the damaged files."

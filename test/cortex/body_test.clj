@@ -1,3 +1,4 @@
+;; Generated from org/body.org by lein tangle: edit the chapter, not this file.
 (ns cortex.body-test
   (:require [clojure.java.io :as io]
             [clojure.test :refer [deftest is testing]]
@@ -301,7 +302,7 @@
 
 (deftest other-joint-kinds-hold
   (doseq [[text kind] [["{:type :point}" SixDofJoint]
-                       ["{:type :cone :limit-xz 0.5 :limit-xy 0.5 :twist 0.2}" ConeJoint]]]
+                       ["{:type :cone :limit-xz 0.5 :limit-xy 0.5 :twist 0.2}" SixDofJoint]]]
     (let [c (doto (code-worm text (Vector3f. 0 3 0)) (body/body!))
           gap (simulate c 300)]
       (is (instance? kind (first (all-joints c))))

@@ -1,3 +1,4 @@
+;; Generated from org/test-body.org by lein tangle: edit the chapter, not this file.
 (ns cortex.creature-test
   (:require [clojure.java.io :as io]
             [clojure.test :refer [deftest is testing]]

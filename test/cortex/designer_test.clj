@@ -1,3 +1,4 @@
+;; Generated from org/body.org by lein tangle: edit the chapter, not this file.
 (ns cortex.designer-test
   (:require [clojure.string :as str]
             [clojure.test :refer [deftest is testing]]

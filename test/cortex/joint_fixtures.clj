@@ -1,3 +1,4 @@
+;; Generated from org/proprioception.org by lein tangle: edit the chapter, not this file.
 (ns cortex.joint-fixtures
   "Creatures made in code for the proprioception, muscle and simulation
   tests: the scene graph the Blender loader would make."

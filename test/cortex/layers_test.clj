@@ -1,3 +1,4 @@
+;; Generated from org/index.org by lein tangle: edit the chapter, not this file.
 (ns cortex.layers-test
   (:require [clojure.java.shell :as sh]
             [clojure.string :as str]

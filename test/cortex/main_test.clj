@@ -1,3 +1,4 @@
+;; Generated from org/main.org by lein tangle: edit the chapter, not this file.
 (ns cortex.main-test
   (:require [clojure.test :refer [deftest is testing]]
             [cortex.body :as body]
@@ -63,7 +64,7 @@
                     (#'main/show-offscreen! (assoc (main/plan ["test/fixtures/designer/quadruped.blend"
                                                                "-s" "0.5" "-o" out "-r" "160x120"] false)
                                                    :record? true)))]
-      (is (re-find #"hip-front-r\s+cone\s+ConeJoint" printed))
+      (is (re-find #"hip-front-r\s+cone\s+SixDofJoint" printed))
       (is (re-find #"largest joint gap 0\.0[0-9]+; (still moving after|at rest from) " printed))
       (is (= 30 (count (render/frames-in out)))))))
 

@@ -1,3 +1,4 @@
+;; Generated from org/mass.org by lein tangle: edit the chapter, not this file.
 (ns cortex.mass-test
   (:require [clojure.test :refer [deftest is testing]]
             [cortex.mass :as mass]))

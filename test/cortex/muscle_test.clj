@@ -1,3 +1,4 @@
+;; Generated from org/muscle.org by lein tangle: edit the chapter, not this file.
 (ns cortex.muscle-test
   (:require [clojure.test :refer [deftest is testing]]
             [cortex.body :as body]

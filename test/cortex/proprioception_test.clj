@@ -1,3 +1,4 @@
+;; Generated from org/proprioception.org by lein tangle: edit the chapter, not this file.
 (ns cortex.proprioception-test
   (:require [clojure.test :refer [deftest is testing]]
             [cortex.body :as body]

@@ -1,3 +1,4 @@
+;; Generated from org/render.org by lein tangle: edit the chapter, not this file.
 (ns cortex.render-test
   (:require [clojure.java.io :as io]
             [clojure.test :refer [deftest is testing]]
@@ -134,3 +135,41 @@
         (is (= 80 (.getWidth (ImageIO/read (io/file gif))))))
       (do (println "ffmpeg is not installed: the video test only checks that it is skipped")
           (is (nil? (render/make-videos! dir 60)))))))
+
+(deftest offscreen-beside-the-caller
+  (let [dir (temp-dir)
+        err (java.io.StringWriter.)
+        [_ w] (falling-box-world)]
+    (binding [*err* err]
+      (render/record! w dir {:progress (render/progress-printer)}))
+    (let [start (System/nanoTime)]
+      (render/start-offscreen! w {:size [160 120]})
+      (is (< (/ (- (System/nanoTime) start) 1e9) 1.0) "start-offscreen! returns at once"))
+    (let [deadline (+ (System/currentTimeMillis) 20000)]
+      (while (and (< (count (render/frames-in dir)) 20) (< (System/currentTimeMillis) deadline))
+        (Thread/sleep 20)))
+    (world/stop! w)
+    (is (not (world/running? w)))
+    (is (nil? (:error @w)))
+    (let [n (count (render/frames-in dir))]
+      (is (<= 20 n) "frames were recorded while the caller went on")
+      (is (re-find (re-pattern (str "recording: " n " frames\n")) (str err))
+          "the counter wrote to the *err* of the caller"))
+    (testing "started again, it draws again"
+      (let [frames (atom 0)]
+        (render/grab-frames! w (fn [_] (swap! frames inc)))
+        (render/start-offscreen! w)
+        (let [deadline (+ (System/currentTimeMillis) 20000)]
+          (while (and (< @frames 5) (< (System/currentTimeMillis) deadline))
+            (Thread/sleep 20)))
+        (world/stop! w)
+        (is (<= 5 @frames))
+        (is (nil? (:error @w)))))))
+
+(deftest no-window-without-a-display
+  (if (render/display?)
+    (println "there is a display: the test of start-window! without one is skipped")
+    (let [[_ w] (falling-box-world)]
+      (is (thrown-with-msg? clojure.lang.ExceptionInfo #"no display"
+                            (render/start-window! w)))
+      (is (not (world/running? w))))))

@@ -1,3 +1,4 @@
+;; Generated from org/sense.org by lein tangle: edit the chapter, not this file.
 (ns cortex.sense-test
   (:require [clojure.test :refer [deftest is testing]]
             [cortex.sense :as sense]

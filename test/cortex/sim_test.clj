@@ -1,8 +1,10 @@
+;; Generated from org/sim.org by lein tangle: edit the chapter, not this file.
 (ns cortex.sim-test
   (:require [clojure.java.io :as io]
             [clojure.test :refer [deftest is testing]]
             [cortex.body :as body]
             [cortex.joint-fixtures :as f]
+            [cortex.proprioception :as p]
             [cortex.render :as render]
             [cortex.sim :as sim]
             [cortex.util :as util]
@@ -28,7 +30,7 @@
 
 (defn grippy-worm
   "The worm as its file makes it: worm-1 with friction 1.0, worm-2 with
-  0 (custom properties)."
+  0.1 (custom properties)."
   []
   (body/body! (util/load-blender-model f/worm-path)))
 
@@ -142,3 +144,31 @@
     (is (pos? (.length (io/file dir "frame-000030.png"))))
     (is (= 30 (sim/steps recorded)))
     (is (= (sim/observe plain) (sim/observe recorded)))))
+
+(deftest the-readme-examples
+  (let [hand (body/body! (util/load-blender-model "Models/test-creature/hand.blend"))
+        joints (p/proprioception hand)]
+    (is (= 15 (count joints)))
+    (is (every? #(= 0.0 (double (or (:angle %) (:twist %)))) (vals joints))))
+  (let [quad #(body/body! (util/load-blender-model "test/fixtures/designer/quadruped.blend"))
+        stand {"knee-front-r" {:target 0.0} "knee-front-l" {:target 0.0}
+               "knee-back-r" {:target 0.0} "knee-back-l" {:target 0.0}
+               "hip-front-r" {:target [0 0 0]} "hip-front-l" {:target [0 0 0]}
+               "hip-back-r" {:target [0 0 0]} "hip-back-l" {:target [0 0 0]}}
+        height (fn [actions] (let [s (sim/simulation (quad) {:floor 0})
+                                   obs (last (repeatedly 180 #(sim/step! s actions)))]
+                               [(second (get-in obs [:segments "torso" :position]))
+                                (get-in obs [:joints "knee-front-r" :angle])
+                                (get-in obs [:touch "lower-leg-front-r" :touching])]))
+        [held knee touching] (height stand)
+        [fallen] (height nil)]
+    (is (> held 1.2) "held by its muscles, it stands")
+    (is (< (Math/abs (double knee)) 0.1))
+    (is (= #{"floor"} touching))
+    (is (< fallen 1.0) "without them it folds"))
+  (let [gait (fn [t] (let [phase (mod (* 1.5 (max 0.0 (- t 0.5))) 1.0)]
+                       {"worm-joint" {:target (* 0.6 (if (< phase 0.8) (/ phase 0.8) (/ (- 1 phase) 0.2)))}}))
+        w (sim/simulation (body/body! (util/load-blender-model "Models/test-creature/worm.blend")) {:floor 0})
+        x0 (first (get-in (sim/observe w) [:segments "worm-1" :position]))]
+    (dotimes [_ 600] (sim/step! w (gait (sim/sim-time w))))
+    (is (< (- (first (get-in (sim/observe w) [:segments "worm-1" :position])) x0) -3.0))))

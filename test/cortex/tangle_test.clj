@@ -1,3 +1,4 @@
+;; Generated from org/literate.org by lein tangle: edit the chapter, not this file.
 (ns cortex.tangle-test
   (:require [clojure.test :refer [deftest is testing]]
             [clojure.string :as str]
@@ -38,8 +39,48 @@
     (doseq [{:keys [file reason]} (tangle/drift "org")]
       (is (nil? reason) (str file " " reason ": run lein tangle"))))
   (testing "no source file lives outside the book"
-    (doseq [f (tangle/untangled "org" ["src" "test" "java" "dev"] [".clj" ".java"])]
+    (doseq [f (tangle/untangled "org" ["src" "test" "java" "dev" "spark"] [".clj" ".java"])]
       (is (nil? f) (str f " is not tangled from any org/ chapter")))))
+
+(deftest generated-files-name-their-chapter
+  (is (= ";; Generated from org/world.org by lein tangle: edit the chapter, not this file."
+         (tangle/header "org/world.org" "src/cortex/world.clj")))
+  (is (str/starts-with? (tangle/header "org/render.org" "java/cortex/SurfacelessContext.java")
+                        "// Generated from org/render.org"))
+  (testing "a script's #! line stays first"
+    (is (= ["#!/bin/sh" "# Generated from org/x.org by lein tangle: edit the chapter, not this file."
+            "echo hi"]
+           (str/split-lines (#'tangle/with-header "org/x.org" "scripts/x.sh" "#!/bin/sh\necho hi\n")))))
+  (testing "every generated file starts by naming the chapter it comes from"
+    (let [owners (into {} (for [^java.io.File chapter (tangle/chapters "org")
+                                block (tangle/blocks (str chapter) (slurp chapter))
+                                :let [^String t (get-in block [:args :tangle])]
+                                :when (and t (not= "no" t))]
+                            [(.getCanonicalFile (java.io.File. (.getParentFile ^java.io.File chapter)
+                                                               ^String t))
+                             (.getName chapter)]))]
+      (doseq [root ["src" "test" "dev" "java" "spark"]
+              ^java.io.File f (file-seq (java.io.File. ^String root))
+              :when (and (.isFile f) (re-find #"\.(clj|java)$" (.getName f)))
+              :let [chapter (owners (.getCanonicalFile f))
+                    first-line (first (str/split-lines (slurp f)))]]
+        (is (and chapter (str/includes? first-line (str "Generated from org/" chapter " by lein tangle")))
+            (str f " starts with " (pr-str first-line)))))))
+
+(deftest every-chapter-declares-its-namespace
+  (doseq [^java.io.File chapter (tangle/chapters "org")
+          :let [text (slurp chapter)
+                declared (second (re-find #"(?m)^#\+PROPERTY: header-args:clojure :ns (\S+)\s*$" text))
+                defined (set (for [b (tangle/blocks (str chapter) text)
+                                   :when (= "clojure" (:language b))
+                                   :let [n (second (re-find #"^\(ns\s+([^\s)]+)" (:body b)))]
+                                   :when n]
+                               n))]]
+    (is declared (str (.getName chapter) " lacks a line #+PROPERTY: header-args:clojure :ns NAMESPACE"
+                      " naming the namespace its code is evaluated in"))
+    (when declared
+      (is (contains? defined declared)
+          (str (.getName chapter) " declares :ns " declared ", which none of its blocks defines")))))
 
 (deftest every-chapter-is-in-the-index
   (let [index (slurp "org/index.org")]

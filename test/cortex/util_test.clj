@@ -1,3 +1,4 @@
+;; Generated from org/util.org by lein tangle: edit the chapter, not this file.
 (ns cortex.util-test
   (:require [clojure.test :refer [deftest is testing]]
             [cortex.util :as util])

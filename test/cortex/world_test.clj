@@ -1,3 +1,4 @@
+;; Generated from org/world.org by lein tangle: edit the chapter, not this file.
 (ns cortex.world-test
   (:require [clojure.test :refer [deftest is testing]]
             [cortex.util :as util]
@@ -116,3 +117,110 @@
           (is (> (.distance (.getWorldTranslation (first balls))
                             (.getLocation (.getCamera w)))
                  5)))))))
+
+(defn- seconds-taken
+  "[the value of (f), the seconds it took]."
+  [f]
+  (let [start (System/nanoTime)
+        v (f)]
+    [v (/ (- (System/nanoTime) start) 1e9)]))
+
+(defn- wait-for-frames
+  "Wait until `w` has run `n` frames in its current run, or 10 s."
+  [w n]
+  (let [deadline (+ (System/currentTimeMillis) 10000)]
+    (while (and (< (:frames @w) n) (< (System/currentTimeMillis) deadline))
+      (Thread/sleep 5))))
+
+(deftest start-stop-start-stop
+  (let [b (util/box 0.5 0.5 0.5 :position (Vector3f. 0 20 0) :name "box")
+        w (world/world (util/nodify [b (floor)]) {} earth-gravity world/no-op)
+        height #(.y (.getWorldTranslation b))]
+    (testing "start! returns at once; the world runs on a thread of its own"
+      (let [[v s] (seconds-taken #(world/start! w))]
+        (is (identical? w v))
+        (is (< s 1.0) (str "start! took " s " s")))
+      (is (world/running? w))
+      (wait-for-frames w 20)
+      (is (<= 20 (:frames @w)))
+      (is (not= (Thread/currentThread) (:thread @w)))
+      (is (thrown-with-msg? clojure.lang.ExceptionInfo #"already running" (world/start! w))))
+    (testing "stop! stops it and waits until its thread has ended"
+      (let [[_ s] (seconds-taken #(world/stop! w))]
+        (is (< s 1.0) (str "stop! took " s " s")))
+      (is (not (world/running? w)))
+      (is (not (.isAlive ^Thread (:thread @w))))
+      (is (nil? (:error @w))))
+    (let [stopped-at (height)]
+      (is (< stopped-at 20) "it fell while it ran")
+      (testing "started again, it goes on from where it stopped, with its physics"
+        (let [[_ s] (seconds-taken #(world/start! w))]
+          (is (< s 1.0) (str "the second start! took " s " s")))
+        (wait-for-frames w 20)
+        (is (< (height) stopped-at))
+        (is (= 2 (world/enqueue! w #(count (.getRigidBodyList (world/physics-space w)))))))
+      (testing "and stopped again"
+        (let [[_ s] (seconds-taken #(world/stop! w))]
+          (is (< s 1.0) (str "the second stop! took " s " s")))
+        (is (not (world/running? w)))
+        (is (nil? (:error @w)))))
+    (testing "a stopped world also runs again blocking, for an exact number of frames"
+      (world/run-world! w 10)
+      (is (= 10 (:frames @w))))))
+
+(deftest changing-a-running-world
+  (let [b (util/box 0.5 0.5 0.5 :position (Vector3f. 0 0 0) :name "box")
+        w (world/world (util/nodify [b]) {} (fn [w] (world/set-gravity w Vector3f/ZERO))
+                       world/no-op)]
+    (world/start! w)
+    (try
+      (is (= :hello (world/enqueue! w (constantly :hello))))
+      (is (identical? (:thread @w) (world/enqueue! w #(Thread/currentThread))))
+      (is (thrown-with-msg? clojure.lang.ExceptionInfo #"thrown inside"
+                            (world/enqueue! w #(throw (ex-info "thrown inside" {})))))
+      (wait-for-frames w 5)
+      (is (= 0.0 (double (.y (.getWorldTranslation b)))) "weightless, it stays put")
+      (world/enqueue! w #(world/set-gravity w (Vector3f. 0 9.81 0)))
+      (let [frames (:frames @w)]
+        (wait-for-frames w (+ frames 30)))
+      (is (< 0.5 (.y (.getWorldTranslation b))) "with gravity upside down, it rises")
+      (finally (world/stop! w)))
+    (is (= :after (world/enqueue! w (constantly :after))) "a stopped world just calls f")))
+
+(deftest a-world-stops-itself
+  (let [w (world/world (util/nodify []) {} world/no-op
+                       (fn [w _] (when (= 10 (:frames @w)) (world/stop! w))))]
+    (world/start! w {:fps 600})
+    (is (identical? w (world/await! w 10000)))
+    (is (<= 10 (:frames @w) 12))
+    (is (not (.isAlive ^Thread (:thread @w))))))
+
+(deftest interrupting-a-run-stops-its-world
+  (let [w (world/world (util/nodify [(floor)]) {} world/no-op (fn [_ _] (Thread/sleep 1)))
+        result (promise)
+        runner (Thread. ^Runnable #(deliver result (try (world/run-world! w 1000000)
+                                                         (catch Throwable t t))))]
+    (.start runner)
+    (wait-for-frames w 10)
+    (.interrupt runner)
+    (let [e (deref result 5000 :still-running)]
+      (is (instance? clojure.lang.ExceptionInfo e))
+      (is (re-find #"interrupted" (str (ex-message e)))))
+    (is (not (world/running? w)))
+    (is (not (.isAlive ^Thread (:thread @w))))
+    (is (< (:frames @w) 1000000))))
+
+(deftest a-world-prints-where-it-was-started
+  (let [out (java.io.StringWriter.)
+        err (java.io.StringWriter.)
+        w (world/world (util/nodify []) {} world/no-op
+                       (fn [w _]
+                         (case (long (:frames @w))
+                           3 (println "hello from frame 3")
+                           6 (throw (ex-info "trouble in frame 6" {}))
+                           nil)))]
+    (binding [*out* out *err* err]
+      (world/start! w {:fps 600}))
+    (is (thrown-with-msg? clojure.lang.ExceptionInfo #"trouble in frame 6" (world/await! w 10000)))
+    (is (re-find #"hello from frame 3" (str out)))
+    (is (re-find #"world failed after \d+ frames: trouble in frame 6" (str err)))))

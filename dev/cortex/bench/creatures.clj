@@ -1,3 +1,4 @@
+;; Generated from org/bench.org by lein tangle: edit the chapter, not this file.
 (ns cortex.bench.creatures
   "Creatures of any size, made in code for benchmarks: chains and
   branching trees of boxes with a joint in every gap, first as plain

@@ -1,3 +1,4 @@
+;; Generated from org/blend-format.org by lein tangle: edit the chapter, not this file.
 (ns cortex.blender.file
   "Read the bytes of a .blend file into blocks and decode its structs
   with the file's own SDNA: no offset is written down here, every one is

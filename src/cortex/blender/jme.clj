@@ -1,3 +1,4 @@
+;; Generated from org/blender.org by lein tangle: edit the chapter, not this file.
 (ns cortex.blender.jme
   "Scene data (see cortex.blender.scene) as a jME scene graph shaped as
   jme3-blender shapes it: root Node, scene Node, a Node per object
@@ -9,6 +10,7 @@
   (:require [cortex.blender.math :as m]
             [cortex.blender.mesh :as mesh]
             [cortex.blender.rigid-body :as physics]
+            [cortex.sense :as sense]
             [cortex.util :as util :refer [vec3]])
   (:import [com.jme3.scene Node Geometry Mesh VertexBuffer$Type Spatial]
            [com.jme3.math Vector3f Quaternion Matrix3f ColorRGBA Transform]
@@ -255,7 +257,8 @@
   properties become user data, plus \"blender-type\" (MESH, EMPTY,
   LIGHT, CAMERA, ...) unless a property of that name exists, plus the
   object's Blender physics (see cortex.blender.rigid-body/user-data),
-  as it is. The scene Node carries the scene's Rigid Body World, when
+  as it is, and a camera's settings (see
+  cortex.blender.scene/camera-data) under cortex.sense/camera-key. The scene Node carries the scene's Rigid Body World, when
   it has one, as user data cortex.blender.rigid-body/world-key.
   Materials are made with asset manager `am` (none when nil)."
   ^Node [am root-name sd]
@@ -270,6 +273,7 @@
                           (let [n (Node. (str (:name o)))]
                             (set-user-data! n (:properties o))
                             (keep-user-data! n (:physics o))
+                            (keep-user-data! n {sense/camera-key (:camera o)})
                             (when-not (contains? (:properties o) "blender-type")
                               (.setUserData n "blender-type" (str (:type o))))
                             n)]))]

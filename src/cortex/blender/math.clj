@@ -1,3 +1,4 @@
+;; Generated from org/blender-scene.org by lein tangle: edit the chapter, not this file.
 (ns cortex.blender.math
   "The little linear algebra the reader needs, on plain Clojure data:
   a 3x3 or 4x4 matrix is a vector of rows (row-major, column vectors

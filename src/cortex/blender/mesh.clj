@@ -1,3 +1,4 @@
+;; Generated from org/blender-mesh.org by lein tangle: edit the chapter, not this file.
 (ns cortex.blender.mesh
   "The base mesh of a Blender Mesh ID in any of the layouts Blender has
   saved since 2.4x, as plain data: vertex positions and polygons, each

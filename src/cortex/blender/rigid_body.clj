@@ -1,3 +1,4 @@
+;; Generated from org/blender-scene.org by lein tangle: edit the chapter, not this file.
 (ns cortex.blender.rigid-body
   "Blender's own rigid body physics as data: the settings of the Physics
   tab's Rigid Body (RigidBodyOb), Rigid Body Constraint (RigidBodyCon)
@@ -167,25 +168,64 @@
       rb (assoc rigid-body-key rb)
       rbc (assoc constraint-key rbc))))
 
+(defn- collection-names
+  "The names of the objects in collection (2.8+) or group (before 2.8)
+  `c`, its child collections included, as Blender's
+  FOREACH_COLLECTION_OBJECT_RECURSIVE visits them; each collection
+  visited once."
+  [bf c]
+  (loop [stack (if c [c] []) seen #{} out []]
+    (if-let [c (peek stack)]
+      (let [stack (pop stack)]
+        (if (seen (:offset c))
+          (recur stack seen out)
+          (let [obs (keep #(or (f/deref-ptr bf (f/fget % "ob") "Object")
+                               (f/deref-ptr bf (f/fget % "object") "Object"))
+                          (f/list-seq bf (f/fget c "gobject")))
+                kids (keep #(f/deref-ptr bf (f/fget % "collection") "Collection")
+                           (f/list-seq bf (f/fget c "children") "CollectionChild"))]
+            (recur (into stack kids) (conj seen (:offset c)) (into out (map f/id-name obs))))))
+      (vec (distinct out)))))
+
+(defn- world-collection
+  "The Collection (2.8+) or Group (before 2.8) that field `field` of
+  RigidBodyWorld `w` points at, or nil."
+  [bf w field]
+  (let [p (f/fget w field)]
+    (or (f/deref-ptr bf p "Collection") (f/deref-ptr bf p "Group"))))
+
 (defn rigid-body-world
   "The Rigid Body World of Scene struct `sc` as a map with keyword
   keys, or nil when it has none: :time-scale, :steps-per-second (the
-  substeps per frame; files that use the newer DNA name:
-  :substeps-per-frame), :num-solver-iterations, :flag with :muted and
-  :use-split-impulse, and :effector-gravity (how much of the scene's
-  gravity its bodies feel); and the scene's own :gravity (Blender axes)
-  and :use-gravity."
+  substeps per frame in files from 2.91 on, steps per second before;
+  files that use the newer DNA name: :substeps-per-frame),
+  :num-solver-iterations, :flag with :muted and :use-split-impulse, and
+  :effector-gravity (how much of the scene's gravity its bodies feel);
+  the scene's own :gravity (Blender axes) and :use-gravity; :fps, the
+  scene's frame rate; :file-version (the version of Blender that saved
+  the file, 304 for 3.4); and which objects Blender simulates: the
+  names of the objects in the world's collection (:collection-objects)
+  and in its constraints collection (:constraint-objects), each nil
+  when the world has no such collection."
   [bf sc]
   (when-let [w (f/deref-ptr bf (f/fget sc "rigidbody_world") "RigidBodyWorld")]
     (let [flag (long (or (f/fget w "flag") 0))
           ew (f/deref-ptr bf (f/fget w "effector_weights") "EffectorWeights")
-          phys (f/fget sc "physics_settings")]
+          phys (f/fget sc "physics_settings")
+          r (f/fget sc "r")
+          group (world-collection bf w "group")
+          constraints (world-collection bf w "constraints")]
       (merge (numbers w ["time_scale" "substeps_per_frame" "steps_per_second"
                          "num_solver_iterations"])
              {:flag flag
               :muted (bit-test flag 0)
               :use-split-impulse (bit-test flag 2)
-              :effector-gravity (or (f/fget ew "global_gravity") 1.0)}
+              :effector-gravity (or (f/fget ew "global_gravity") 1.0)
+              :file-version (:version bf)
+              :collection-objects (when group (collection-names bf group))
+              :constraint-objects (when constraints (collection-names bf constraints))}
+             (when-let [fps (f/fget r "frs_sec")]
+               {:fps (/ (double fps) (double (or (f/fget r "frs_sec_base") 1.0)))})
              (when-let [g (f/fget phys "gravity")]
                {:gravity g
                 :use-gravity (bit-test (long (or (f/fget phys "flag") 1)) 0)})))))

@@ -1,11 +1,15 @@
+;; Generated from org/blender-scene.org by lein tangle: edit the chapter, not this file.
 (ns cortex.blender.scene
   "The objects of a .blend file's scene as plain data: names, types,
   parents, world matrices rebuilt from each object's own transform
   fields, custom properties and material colours.
 
-  Entry points: `scene-data` (a parsed file's scene as data),
+  Entry points: `scene-data` (a parsed file's scene as data, the saved
+  scene or one chosen by name), `scene-list` (a file's scenes),
+  `armature-poses` (bones posed as Blender poses them),
   `current-scene`, `scene-objects`, `properties`."
-  (:require [cortex.blender.file :as f]
+  (:require [clojure.string :as str]
+            [cortex.blender.file :as f]
             [cortex.blender.math :as m]
             [cortex.blender.mesh :as mesh]
             [cortex.blender.rigid-body :as physics]))
@@ -180,6 +184,34 @@
                      ma (f/deref-ptr bf p "Material")]]
            (when ma {:name (f/id-name ma) :color (material-color ma)})))))
 
+(def camera-types
+  "Blender's camera `type` codes."
+  {0 :perspective 1 :orthographic 2 :panoramic})
+
+(def sensor-fits
+  "Blender's camera `sensor_fit` codes."
+  {0 :auto 1 :horizontal 2 :vertical})
+
+(defn camera-data
+  "What the reader keeps of Camera struct `cam`: {:type (:perspective,
+  :orthographic, :panoramic) :lens :sensor-width :sensor-height
+  :sensor-fit (:auto, :horizontal, :vertical) :clip-start :clip-end
+  :ortho-scale :shift-x :shift-y}, numbers as doubles, lengths in
+  millimetres (lens, sensor) or Blender units."
+  [cam]
+  (let [number (fn [names default]
+                 (double (or (field-any cam names) default)))]
+    {:type (camera-types (f/fget cam "type") :unknown)
+     :lens (number ["lens"] 50.0)
+     :sensor-width (number ["sensor_x"] 36.0)
+     :sensor-height (number ["sensor_y"] 24.0)
+     :sensor-fit (sensor-fits (f/fget cam "sensor_fit") :auto)
+     :clip-start (number ["clipsta" "clip_start"] 0.1)
+     :clip-end (number ["clipend" "clip_end"] 100.0)
+     :ortho-scale (number ["ortho_scale"] 7.0)
+     :shift-x (number ["shiftx" "shift_x"] 0.0)
+     :shift-y (number ["shifty" "shift_y"] 0.0)}))
+
 (defn- file-global
   "The FileGlobal struct of the `GLOB` block, or nil."
   [bf]
@@ -222,39 +254,128 @@
                      (if (seen (:offset r)) [out seen] [(conj out r) (conj seen (:offset r))]))
                    [[] #{}] all))))
 
-(defn- find-bone
-  "The Bone named `name` in the tree of bones of armature `arm`
-  (`bonebase`, then each bone's `childbase`), visiting each at most
-  once."
-  [bf arm name]
-  (loop [todo (vec (f/list-seq bf (f/fget arm "bonebase") "Bone")) seen #{}]
-    (when-let [b (peek todo)]
-      (let [todo (pop todo)]
-        (cond
-          (seen (:offset b)) (recur todo seen)
-          (= name (f/fget b "name")) b
-          :else (recur (into todo (f/list-seq bf (f/fget b "childbase") "Bone"))
-                       (conj seen (:offset b))))))))
+(def ^:private bone-bits
+  "Bits of a Bone's `flag` (eBone_Flag) that change how its pose is
+  computed."
+  {:connected 4 :hinge 9 :no-scale 15 :no-local-location 22 :relative-parenting 23})
+
+(defn- bones
+  "Every Bone of armature `arm` (`bonebase`, then each bone's
+  `childbase`), each with the name of its parent bone, parents first,
+  each visited once."
+  [bf arm]
+  (loop [todo (mapv #(vector % nil) (f/list-seq bf (f/fget arm "bonebase") "Bone"))
+         seen #{} out []]
+    (if-let [[b parent] (first todo)]
+      (if (seen (:offset b))
+        (recur (subvec todo 1) seen out)
+        (let [kids (mapv #(vector % (f/fget b "name"))
+                         (f/list-seq bf (f/fget b "childbase") "Bone"))]
+          (recur (into (subvec todo 1) kids) (conj seen (:offset b))
+                 (conj out [b parent]))))
+      out)))
+
+(defn- channel-matrix
+  "A pose channel's own matrix, as Blender's BKE_pchan_to_mat4:
+  rotation (its rotation mode: Euler 1..6, quaternion 0, axis-angle
+  -1) times scale, translated by its location unless the bone is
+  connected to its parent."
+  [pchan connected?]
+  (let [mode (long (or (f/fget pchan "rotmode") 0))
+        rot (cond
+              (pos? mode) (m/euler->mat3 (or (f/fget pchan "eul") [0 0 0]) mode)
+              (= -1 mode) (m/axis-angle->mat3 (or (f/fget pchan "rotAxis") [0 1 0])
+                                              (or (f/fget pchan "rotAngle") 0.0))
+              :else (m/quat->mat3 (or (f/fget pchan "quat") [1 0 0 0])))
+        size (or (field-any pchan ["size" "scale"]) [1 1 1])]
+    (m/mat3->mat4 (m/mat-mul rot (m/scale->mat3 size))
+                  (if connected? [0 0 0] (or (f/fget pchan "loc") [0 0 0])))))
+
+(defn- driven-bones
+  "The names of the bones that drivers of armature object `par` drive
+  (F-Curves of its animation data whose path is pose.bones[\"name\"]...)."
+  [bf par]
+  (let [adt (f/deref-ptr bf (f/fget par "adt") "AnimData")]
+    (set (for [fc (f/list-seq bf (f/fget adt "drivers") "FCurve")
+               :let [[off n] (f/pointed-bytes bf (f/fget fc "rna_path"))
+                     path (when off (f/c-string bf off (min 4096 (long n))))
+                     [_ bone] (when path (re-find #"pose\.bones\[\"([^\"]*)\"\]" path))]
+               :when bone]
+           bone))))
+
+(defn armature-poses
+  "The pose of every bone of armature object `par`, computed as Blender
+  computes it for bones without constraints or drivers (see above):
+  {:poses {bone-name {:matrix 4x4 (armature frame) :length :relative?}}
+  :warnings [...]}. A bone with constraints, drivers or an inheritance
+  mode other than the full one, and the bones under it, keep the pose
+  matrix the file saved, with a warning naming the bone."
+  [bf par]
+  (let [arm (f/deref-ptr bf (f/fget par "data") "bArmature")
+        pose (f/deref-ptr bf (f/fget par "pose") "bPose")
+        chans (into {} (map (juxt #(f/fget % "name") identity))
+                    (f/list-seq bf (f/fget pose "chanbase") "bPoseChannel"))
+        rest? (bit-test (long (or (f/fget arm "flag") 0)) 0)
+        driven (driven-bones bf par)
+        arm-name (f/id-name par)]
+    (reduce
+     (fn [{:keys [poses] :as acc} [b parent]]
+       (let [name (f/fget b "name")
+             flag (long (or (f/fget b "flag") 0))
+             bit #(bit-test flag (long (bone-bits %)))
+             pchan (chans name)
+             parent-pose (get poses parent)
+             saved (some-> (f/fget pchan "pose_mat") m/from-blender)
+             why (cond
+                   rest? nil
+                   (seq (f/list-seq bf (f/fget pchan "constraints"))) "has constraints"
+                   (driven name) "has drivers"
+                   (or (bit :hinge) (bit :no-local-location)
+                       (pos? (long (or (f/fget b "inherit_scale_mode") 0)))
+                       (and (not (f/has-field? b "inherit_scale_mode")) (bit :no-scale)))
+                   "does not inherit its parent's full transform")
+             chan (if (or rest? (nil? pchan)) (m/identity-matrix 4) (channel-matrix pchan (bit :connected)))
+             offset (if parent-pose
+                      (let [head (or (f/fget b "head") [0 0 0])
+                            plen (double (:length parent-pose))]
+                        (m/mat3->mat4 (m/mat4->mat3 (m/from-blender (f/fget b "bone_mat")))
+                                      (update (vec head) 1 #(+ (double %) plen))))
+                      (m/from-blender (f/fget b "arm_mat")))
+             computed (m/mat-mul (if parent-pose (m/mat-mul (:matrix parent-pose) offset) offset)
+                                 chan)
+             use-saved? (and why saved)]
+         (-> acc
+             (assoc-in [:poses name]
+                       {:matrix (if use-saved? saved computed)
+                        :chan chan
+                        :saved? (boolean use-saved?)
+                        :relative? (bit :relative-parenting)
+                        :length (double (or (f/fget b "length") 0.0))})
+             (cond-> use-saved?
+               (update :warnings conj
+                       (str "bone " (pr-str name) " of armature " (pr-str arm-name) " " why
+                            ": cortex does not evaluate that and uses the pose saved in the"
+                            " file for it, which may be stale"))))))
+     {:poses {} :warnings []}
+     (if arm (bones bf arm) []))))
 
 (defn- bone-matrix
-  "For an object parented to a bone (partype 7): the bone's pose matrix
-  in its armature's frame, moved from the bone's head to its tail, as
-  Blender's ob_parbone does; nil when the pose or bone is missing. The
-  pose matrices are saved with the armature object's pose."
+  "For an object parented to a bone (partype 7): the bone's pose in its
+  armature's frame (see `armature-poses`), moved from the bone's head
+  to its tail, as Blender's ob_parbone does (or the bare channel matrix
+  for a bone with relative parenting). {:matrix m :warnings [...]};
+  :matrix is nil when the armature has no such bone."
   [bf ob]
   (let [par (f/deref-ptr bf (f/fget ob "parent") "Object")
         name (f/fget ob "parsubstr")
-        pose (f/deref-ptr bf (f/fget par "pose") "bPose")
-        pchan (some #(when (= name (f/fget % "name")) %)
-                    (f/list-seq bf (f/fget pose "chanbase") "bPoseChannel"))
-        arm (f/deref-ptr bf (f/fget par "data") "bArmature")
-        bone (when arm (find-bone bf arm name))]
-    (when-let [pm (f/fget pchan "pose_mat")]
-      (let [m (m/from-blender pm)
-            len (double (or (f/fget bone "length") 0.0))
-            y (mapv #(nth % 1) (subvec m 0 3))
-            t (mapv + (m/translation m) (mapv #(* len (double %)) y))]
-        (m/mat3->mat4 (m/mat4->mat3 m) t)))))
+        {:keys [poses warnings]} (armature-poses bf par)]
+    {:warnings warnings
+     :matrix (when-let [{:keys [matrix length relative? chan]} (get poses name)]
+               (if relative?
+                 chan
+                 (let [y (mapv #(nth % 1) (subvec matrix 0 3))
+                       t (mapv + (m/translation matrix) (mapv #(* (double length) (double %)) y))]
+                   (m/mat3->mat4 (m/mat4->mat3 matrix) t))))}))
 
 (defn- object-info
   "What the reader keeps of the Object struct `ob`. Objects are known by
@@ -270,8 +391,8 @@
      :rotation-mode (rotation-modes (f/fget ob "rotmode") "XYZ")
      :parent-key (:offset (f/deref-ptr bf (f/fget ob "parent") "Object"))
      :partype (bit-and (long (or (f/fget ob "partype") 0)) 15)
-     :bone-matrix (when (= 7 (bit-and (long (or (f/fget ob "partype") 0)) 15))
-                    (bone-matrix bf ob))
+     :bone (when (= 7 (bit-and (long (or (f/fget ob "partype") 0)) 15))
+             (bone-matrix bf ob))
      :local (local-matrix ob)
      :parentinv (m/from-blender (f/fget ob "parentinv"))
      :stored-world (when obmat (m/from-blender obmat))
@@ -280,6 +401,8 @@
      :color (or (f/fget ob "col") [1.0 1.0 1.0 1.0])
      :modifiers (count (f/list-seq bf (f/fget ob "modifiers")))
      :physics (physics/user-data bf ob)
+     :camera (when (and (= type "CAMERA") data (= "Camera" (:name (:layout data))))
+               (camera-data data))
      :mesh-ref (when (and (= type "MESH") data (= "Mesh" (:name (:layout data)))) data)}))
 
 (defn- world-matrices
@@ -303,7 +426,8 @@
                           (recur (:parent-key (by-key q)) (conj chain q) (conj seen q))))
                 done (reduce (fn [done q]
                                (let [{:keys [parent-key partype local parentinv stored-world
-                                             bone-matrix]} (by-key q)
+                                             bone]} (by-key q)
+                                     bone-matrix (:matrix bone)
                                      pw (get done parent-key)]
                                  (assoc done q
                                         (cond
@@ -347,35 +471,81 @@
                        parent (map :key infos))]
     (mapv #(assoc % :parent-key (parent (:key %))) infos)))
 
+(defn scene-structs
+  "Every Scene struct of parsed file `bf`, in file order."
+  [bf]
+  (keep #(f/block-ref bf %) (f/blocks-with-code bf "SC")))
+
+(defn scene-list
+  "The scenes of parsed file `bf`: for each, {:name :objects (how many
+  objects it holds) :meshes (how many of them are meshes) :current?
+  (whether the file was saved showing it)}."
+  [bf]
+  (let [cur (current-scene bf)]
+    (mapv (fn [sc]
+            (let [obs (scene-objects bf sc)]
+              {:name (f/id-name sc)
+               :objects (count obs)
+               :meshes (count (filter #(= 1 (f/fget % "type")) obs))
+               :current? (= (:offset sc) (:offset cur))}))
+          (scene-structs bf))))
+
+(defn- choose-scene
+  "The Scene struct `opts` asks for (:scene, a name), else the current
+  one; an error listing the scenes when no scene has that name. With a
+  warning when the scene has no mesh objects and others have."
+  [bf {:keys [scene]}]
+  (let [all (scene-structs bf)
+        sc (if scene
+             (or (some #(when (= scene (f/id-name %)) %) all)
+                 (f/fail (:source bf) (str "no scene named " (pr-str scene) "; the file has "
+                                           (pr-str (mapv f/id-name all)))))
+             (current-scene bf))
+        listed (when sc (scene-list bf))
+        mine (some #(when (= (f/id-name sc) (:name %)) %) listed)
+        others (filter #(and (pos? (long (:meshes %))) (not= (:name %) (:name mine))) listed)]
+    [sc (when (and mine (zero? (long (:meshes mine))) (seq others))
+          [(str "scene " (pr-str (:name mine)) " has no mesh objects; "
+                (str/join ", " (map #(str "scene " (pr-str (:name %)) " has " (:meshes %)) others))
+                ": choose one with (load-blender-model path {:scene "
+                (pr-str (:name (first others))) "})")])]))
+
 (defn scene-data
   "The scene of parsed file `bf` as data: {:scene name, :objects [...],
-  :rigid-body-world settings}, each object with :name, :type, :parent
-  (the parent's name, even when the parent is not in the scene),
-  :parent-key (the parent's key when it is in the scene), :world (4x4
-  rows, Blender coordinates), :mesh (mesh data or nil), :materials,
-  :properties, :physics and more; :rigid-body-world is the scene's
-  (see cortex.blender.rigid-body/rigid-body-world), nil when it has
-  none. Objects are those of the current scene; a file whose scene
-  lists none gives every object it holds."
-  [bf]
-  (let [sc (current-scene bf)
-        obs (when sc (scene-objects bf sc))
-        obs (if (seq obs)
-              obs
-              (keep #(f/block-ref bf %) (f/blocks-with-code bf "OB")))
-        infos (mapv #(object-info bf %) obs)
-        all (break-cycles (with-ancestors bf infos))
-        worlds (world-matrices all)
-        infos (vec (take (count infos) all))
-        keys (set (map :key infos))
-        names (into {} (map (juxt :key :name)) all)]
-    {:scene (if sc (f/id-name sc) "Scene")
-     :rigid-body-world (when sc (physics/rigid-body-world bf sc))
-     :objects (mapv (fn [{:keys [parent-key mesh-ref] :as o}]
-                      (-> o
-                          (assoc :world (worlds (:key o))
-                                 :parent-key (when (keys parent-key) parent-key)
-                                 :parent (names parent-key)
-                                 :mesh (when mesh-ref (mesh/mesh-data bf mesh-ref)))
-                          (dissoc :mesh-ref)))
-                    infos)}))
+  :rigid-body-world settings, :warnings [...]}, each object with :name,
+  :type, :parent (the parent's name, even when the parent is not in
+  the scene), :parent-key (the parent's key when it is in the scene),
+  :world (4x4 rows, Blender coordinates), :mesh (mesh data or nil),
+  :materials, :properties, :physics and more; :rigid-body-world is the
+  scene's (see cortex.blender.rigid-body/rigid-body-world), nil when it
+  has none. The scene is the one `opts` names ({:scene \"Game\"}), else
+  the one the file was saved showing; a saved scene that lists no
+  objects gives every object the file holds (files that predate
+  scenes' object lists). :warnings says what the reader could not do
+  as Blender would (bones whose saved pose is used) and when the scene
+  has no meshes but another has."
+  ([bf] (scene-data bf {}))
+  ([bf opts]
+   (let [[sc scene-warnings] (choose-scene bf opts)
+         obs (when sc (scene-objects bf sc))
+         obs (if (or (seq obs) (:scene opts))
+               obs
+               (keep #(f/block-ref bf %) (f/blocks-with-code bf "OB")))
+         infos (mapv #(object-info bf %) obs)
+         all (break-cycles (with-ancestors bf infos))
+         worlds (world-matrices all)
+         infos (vec (take (count infos) all))
+         keys (set (map :key infos))
+         names (into {} (map (juxt :key :name)) all)]
+     {:scene (if sc (f/id-name sc) "Scene")
+      :rigid-body-world (when sc (physics/rigid-body-world bf sc))
+      :warnings (vec (distinct (concat scene-warnings (mapcat (comp :warnings :bone) all))))
+      :objects (mapv (fn [{:keys [parent-key mesh-ref] :as o}]
+                       (-> o
+                           (assoc :world (worlds (:key o))
+                                  :bone-matrix (:matrix (:bone o))
+                                  :parent-key (when (keys parent-key) parent-key)
+                                  :parent (names parent-key)
+                                  :mesh (when mesh-ref (mesh/mesh-data bf mesh-ref)))
+                           (dissoc :mesh-ref :bone)))
+                     infos)})))

@@ -1,3 +1,4 @@
+;; Generated from org/test-body.org by lein tangle: edit the chapter, not this file.
 (ns cortex.test.body
   "The worlds that show a body being built, step by step: the hand as a
   hologram, the hand solid but in pieces, the hand jointed, and the worm

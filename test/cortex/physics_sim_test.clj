@@ -1,0 +1,252 @@
+;; Generated from org/physics-tab.org by lein tangle: edit the chapter, not this file.
+(ns cortex.physics-sim-test
+  (:require [clojure.test :refer [deftest is testing]]
+            [cortex.physics-tab :as bp]
+            [cortex.physics-tab-test :as pt]
+            [cortex.body :as body]
+            [cortex.util :as util]
+            [cortex.world :as world])
+  (:import (com.jme3.app SimpleApplication)
+           (com.jme3.app.state AbstractAppState)
+           (com.jme3.bounding BoundingBox)
+           (com.jme3.bullet.control RigidBodyControl)
+           (com.jme3.math Vector3f)
+           (com.jme3.scene Node Spatial)))
+
+(set! *warn-on-reflection* true)
+
+(def folder "test/fixtures/physics-sim/")
+
+(defn- blender-sim
+  "Blender's own simulation of fixture `name` (simulate_physics.py --times)."
+  [name]
+  (pt/read-json (slurp (str folder name "_sim.json"))))
+
+(defn- place
+  "The translation of a Blender 4x4 (rows) in jME's axes."
+  [m]
+  (let [[x y z] (map #(nth % 3) (take 3 m))] [(double x) (double z) (- (double y))]))
+
+(defn- transform
+  "A Blender 4x4 (rows) as [rotation rows translation], in jME's axes."
+  [m]
+  (let [p [0 2 1] s [1.0 1.0 -1.0]
+        r (vec (for [i (range 3)] (vec (for [j (range 3)]
+                                          (* (s i) (s j) (double (get-in m [(p i) (p j)])))))))]
+    [r (place m)]))
+
+(defn- apply-t [[r t] v] (mapv + t (mapv (fn [row] (reduce + (map * row v))) r)))
+
+(defn- inverse-apply [[r t] v]
+  (let [d (mapv - v t)]
+    (mapv (fn [j] (reduce + (map #(* (get-in r [% j]) (d %)) (range 3)))) (range 3))))
+
+(defn- dist [a b] (Math/sqrt (reduce + (map #(let [d (- (double %1) (double %2))] (* d d)) a b))))
+
+(defn- median [xs] (let [v (vec (sort xs)) n (count v)]
+                     (if (even? n) (/ (+ (v (dec (quot n 2))) (v (quot n 2))) 2.0) (v (quot n 2)))))
+
+(defn- control ^RigidBodyControl [creature name]
+  (some-> (pt/by-name creature name) bp/body-spatial (.getControl RigidBodyControl)))
+
+(defn- our-transform
+  "Where cortex's body of object `name` is: [rotation rows translation], jME axes."
+  [creature name]
+  (when-let [c (control creature name)]
+    (let [m (.getPhysicsRotationMatrix c) p (.getPhysicsLocation c)]
+      [(vec (for [i (range 3)] (vec (for [j (range 3)] (double (.get m (int i) (int j)))))))
+       [(double (.x p)) (double (.y p)) (double (.z p))]])))
+
+(defn run-case
+  "Simulate fixture `name` with cortex as Blender's file says (the file's
+  own gravity, substeps, iterations and time scale) and compare with
+  Blender's simulation at its times. Returns {:times [...] :size (the
+  diagonal of the moving bodies' bounding box at the start) :errors
+  [{body error} per time] :median [...] :gaps {constraint [ours
+  theirs] per time} :broken ours :creature}."
+  ([name] (run-case name {}))
+  ([name opts]
+   (let [sim (blender-sim name)
+         fps (double (get sim "fps"))
+         times (get sim "times")
+         frames (mapv #(Math/round (* 60.0 (double %))) times)
+         ^Node creature (bp/physics-body! (bp/load-creature (str folder name ".blend")) opts)
+         _ (.updateGeometricState creature)
+         bodies (filter #(some? (control creature %)) (keys (get sim "objects")))
+         moving (filter #(pos? (.getMass (control creature %))) bodies)
+         bound (reduce (fn [^BoundingBox b n]
+                         (let [wb (.getWorldBound ^Spatial (bp/body-spatial (pt/by-name creature n)))]
+                           (if b (.merge b wb) (.clone wb))))
+                       nil moving)
+         size (if bound (* 2.0 (.length (.getExtent ^BoundingBox bound (Vector3f.)))) 1.0)
+         cons (into {} (for [[cn c] (get sim "constraints")
+                             :let [a (get c "object1") b (get c "object2")
+                                   p (place (get c "matrix_world"))
+                                   ta (transform (first (get-in sim ["objects" a])))
+                                   tb (transform (first (get-in sim ["objects" b])))]
+                             :when (and (get c "in_world") (get c "enabled"))]
+                         [cn {:a a :b b :pa (inverse-apply ta p) :pb (inverse-apply tb p)}]))
+         snapshot (fn [] (into {} (for [n bodies] [n (our-transform creature n)])))
+         seen (atom {0 (snapshot)})
+         w (world/world (util/nodify [creature]) {} world/no-op world/no-op)
+         frame (atom 0)]
+     (.attach (.getStateManager ^SimpleApplication w)
+              (proxy [AbstractAppState] []
+                (update [_]
+                  (let [f (swap! frame inc)]
+                    ;; the state before the physics of frame f+1: after f frames
+                    (when (some #{(dec f)} frames) (swap! seen assoc (dec f) (snapshot)))))))
+     (world/run-world! w (inc (apply max frames)))
+     (let [per-time
+           (for [[i f] (map-indexed vector frames)
+                 :let [ours (@seen f)
+                       theirs (into {} (for [n bodies] [n (transform (nth (get-in sim ["objects" n]) i))]))]]
+             {:time (nth times i)
+              :errors (into {} (for [n bodies] [n (dist (second (ours n)) (second (theirs n)))]))
+              :gaps (into {} (for [[cn {:keys [a b pa pb]}] cons
+                                   :when (and (ours a) (ours b))]
+                               [cn [(dist (apply-t (ours a) pa) (apply-t (ours b) pb))
+                                    (dist (apply-t (theirs a) pa) (apply-t (theirs b) pb))]]))})]
+       {:name name :size size :moving (vec moving)
+        :per-time (vec per-time)
+        :median (mapv #(median (map (:errors %) moving)) per-time)
+        :broken (bp/broken-joints creature)
+        :creature creature}))))
+
+(defn summary [r]
+  {:name (:name r) :size (:size r)
+   :median (:median r)
+   :max-error (mapv #(apply max (vals (:errors %))) (:per-time r))
+   :worst (mapv #(apply max-key val (:errors %)) (:per-time r))
+   :gap-excess (mapv #(reduce max 0.0 (map (fn [[o t]] (- o t)) (vals (:gaps %)))) (:per-time r))
+   :broken (:broken r)})
+
+(def ^:private case-run (memoize run-case))
+
+(defn- at-1s [r] (nth (:per-time r) 2))
+
+(defn- relative-median
+  "The median position error at time index `i` over the scene's size."
+  [r i]
+  (/ (nth (:median r) i) (:size r)))
+
+(defn- gaps-hold?
+  "Is every joint's gap in cortex within Blender's own plus 0.01, at every
+  time, for the constraints named `names` (all when nil)?"
+  [r names]
+  (every? true? (for [pt (:per-time r)
+                      [cn [ours theirs]] (:gaps pt)
+                      :when (or (nil? names) (contains? names cn))]
+                  (<= ours (+ theirs 0.01)))))
+
+(deftest the-world-reaches-the-simulation
+  (let [r (case-run "substeps")
+        s (bp/simulation-settings (bp/world-settings (:creature r)))]
+    (testing "5 substeps a frame at 24 fps is 120 Hz: 2 substeps of a 1/60 s step"
+      (is (= 2 (:substeps s)))
+      (is (= 4 (:iterations s)))
+      (is (= 0.5 (:time-scale s)))
+      (is (= [0.0 -6.0 0.0] (mapv #(+ 0.0 (double %)) (:gravity s))))
+      (is (< (Math/abs (- (:step s) (/ 0.5 120))) 1e-8)))
+    (testing "the step length always gives exactly k substeps in float arithmetic"
+      (doseq [t [0.1 0.25 0.5 1.0 1.5 2.0] k (range 1 21)
+              :let [a (:step (bp/simulation-settings {:time-scale t :substeps-per-frame (* k 2.5)
+                                                      :fps 24.0 :file-version 304}))
+                    x (float (* (float (/ 1.0 60.0)) (float t)))]]
+        (is (>= (int (float (/ (double x) (double a)))) k) [t k])))
+    (testing "Blender's defaults: 10 substeps at 24 fps, 4 per cortex step"
+      (is (= 4 (:substeps (bp/simulation-settings nil)))))
+    (testing "the pendulum moves as Blender's does, in its world"
+      (is (< (relative-median r 2) 0.02))
+      (is (gaps-hold? r nil)))))
+
+(deftest a-ragdoll-made-with-connect
+  (let [r (case-run "ragdoll")]
+    (is (= 9 (count (:gaps (at-1s r)))))
+    (is (< (relative-median r 2) 0.02))
+    (is (gaps-hold? r nil))))
+
+(deftest collision-collections
+  (let [r (case-run "collisions")
+        y (fn [n] (second (second (our-transform (:creature r) n))))]
+    (is (< (relative-median r 2) 0.02))
+    (testing "b shares no collection with the ground and falls through it, as in Blender"
+      (is (< (y "b") -5.0)))
+    (testing "a lands on the ground, c on d, e on a"
+      (is (< (Math/abs (- 0.3 (y "a"))) 0.02))
+      (is (< (Math/abs (- 0.9 (y "c"))) 0.05))
+      (is (< (Math/abs (- 0.9 (y "e"))) 0.05)))))
+
+(deftest bodies-outside-the-world
+  (let [r (case-run "outside")
+        creature (:creature r)
+        ws (bp/warnings creature)]
+    (is (< (relative-median r 2) 0.02))
+    (is (gaps-hold? r nil))
+    (testing "the body outside the collection is not built, and said"
+      (is (nil? (control creature "outside")))
+      (is (some #(re-find #"\[\"outside\"\] are not in the Rigid Body World's collection" %) ws)))
+    (testing "the constraint outside its collection is not built: the pair falls apart"
+      (is (some #(re-find #"\[\"pair-joint\"\] are not in the Rigid Body World's constraints" %) ws))
+      (is (> (dist (second (our-transform creature "pair-b")) [0.62 2.0 0.0]) 1.0)))
+    (testing "a body without vertices is built, and its joint holds"
+      (is (some? (control creature "helper")))
+      (is (< (first (get (:gaps (at-1s r)) "helper-joint")) 0.01)))
+    (testing "the Animated body stays, and is named"
+      (is (some #(re-find #"\"lift\" is Animated" %) ws))
+      (is (< (get (:errors (at-1s r)) "lift") 1e-6)))
+    (testing "{:all-rigid-bodies? true} builds the one outside too"
+      (let [c (bp/physics-body! (bp/load-creature (str folder "outside.blend")) {:all-rigid-bodies? true})]
+        (is (some? (control c "outside")))))))
+
+(deftest deactivation-follows-the-file
+  (let [r (case-run "deactivation")]
+    (is (< (relative-median r 2) 0.02))
+    (testing "the floater starts asleep and nothing wakes it: it has not moved at 2 s"
+      (is (< (get-in (:per-time r) [3 :errors "floater"]) 1e-6))
+      (is (= [-4.0 2.0 0.0] (mapv #(/ (Math/round (* 1000 (double %))) 1000.0)
+                                  (second (our-transform (:creature r) "floater"))))))
+    (testing "the sleeper waits in the air until the hammer strikes (at 0.45 s), as in Blender"
+      (let [c (bp/physics-body! (bp/load-creature (str folder "deactivation.blend")))
+            w (world/world (util/nodify [c]) {} world/no-op world/no-op)]
+        (world/run-world! w 25)
+        (is (= [0.0 1.5 0.0] (mapv #(/ (Math/round (* 1000 (double %))) 1000.0)
+                                   (second (our-transform c "sleeper"))))))
+      (is (< (get-in (:per-time r) [1 :errors "sleeper"]) 0.02)))))
+
+(deftest breaking-thresholds-break-joints
+  (let [r (case-run "breaking")
+        broken (:broken r)
+        theirs-broken (set (for [[cn [_ theirs]] (:gaps (at-1s r)) :when (> theirs 0.1)] cn))]
+    (testing "the same joints break as in Blender"
+      (is (= theirs-broken (set (keys broken))))
+      (is (= #{"hang-heavy" "hold-shelf"} (set (keys broken)))))
+    (testing "the heavy weight breaks its joint in the first substep; the light one holds"
+      (is (= 1 (get broken "hang-heavy")))
+      (is (gaps-hold? r #{"hang-light"})))
+    (testing "the shelf breaks when the ball lands on it, before 0.5 s"
+      (is (< 90 (get broken "hold-shelf") 120)))
+    (testing "a jBullet 6-DOF joint's impulse is measured: a hanging weight pulls m g dt"
+      (let [c (bp/load-creature (str folder "breaking.blend"))
+            {:keys [joints]} (bp/build! c)
+            j (:joint (first (filter #(= "hang-light" (:object %)) joints)))
+            w (world/world (util/nodify [c]) {} world/no-op world/no-op)]
+        (world/run-world! w 30)
+        (is (< (Math/abs (- (/ 9.81 240) (.getAppliedImpulse ^com.jme3.bullet.joints.PhysicsJoint j))) 0.005))))
+    (testing "what happens after the break is chaotic: present numbers, not Blender's bar"
+      (is (< (relative-median r 1) 0.02))
+      (is (< (relative-median r 2) 0.04)))))
+
+(deftest a-chain-of-bone-shaped-bodies
+  (let [r (case-run "rig-chain")
+        first-step (let [c (bp/physics-body! (bp/load-creature (str folder "rig-chain.blend")))
+                         w (world/world (util/nodify [c]) {} world/no-op world/no-op)]
+                     (world/run-world! w 1)
+                     (apply max (for [i (range 1 6)]
+                                  (.length (.getLinearVelocity (control c (str "bone-" i)))))))]
+    (testing "no kick: after one step no bone is faster than gravity and the swing make it"
+      (is (< first-step 0.5)))
+    (is (gaps-hold? r nil))
+    (testing "jBullet's 6-DOF limits are not Bullet 2.8's: present numbers, not Blender's bar"
+      (is (< (relative-median r 1) 0.02))
+      (is (< (relative-median r 2) 0.04)))))
