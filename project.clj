@@ -1,3 +1,26 @@
+;; The physics engine is chosen by profile (see org/engine.org): the default is
+;; jme3-jbullet (pure Java); lein with-profile +native ... uses stephengold's
+;; Minie (native Bullet) instead. Both use the packages com.jme3.bullet.*, so
+;; they replace each other; these are the dependencies they share.
+(def shared-dependencies
+  '[[org.clojure/clojure "1.11.1"]
+    [org.jmonkeyengine/jme3-core "3.2.4-stable"]
+    [org.jmonkeyengine/jme3-desktop "3.2.4-stable"]
+    ;; pure-Java zstd, for .blend files saved by Blender 3.0 and later
+    [io.airlift/aircompressor "0.27"]
+    ;; OpenGL through LWJGL 3: windows, and offscreen frames drawn
+    ;; with EGL and no X server at all (cortex.render)
+    [org.jmonkeyengine/jme3-lwjgl3 "3.2.4-stable"]
+    [org.lwjgl/lwjgl-egl "3.2.1"]
+    ;; lein run's options
+    [org.clojure/tools.cli "1.1.230"]])
+
+(def dev-dependencies
+  '[[org.jmonkeyengine/jme3-blender "3.2.4-stable"]
+    [org.clojure/test.check "1.1.1"]
+    ;; (user/reset): reload what changed
+    [org.clojure/tools.namespace "1.5.0"]])
+
 (defproject cortex "0.1.0-SNAPSHOT"
   :description "Build physical creatures for jMonkeyEngine 3 from Blender files."
   :url "https://github.com/aurellem/cortex"
@@ -8,22 +31,12 @@
   :repositories [["debian" {:url "file:///usr/share/maven-repo"
                             :checksum :ignore
                             :snapshots false}]]
-  :dependencies [[org.clojure/clojure "1.11.1"]
-                 [org.jmonkeyengine/jme3-core "3.2.4-stable"]
-                 [org.jmonkeyengine/jme3-desktop "3.2.4-stable"]
-                 [org.jmonkeyengine/jme3-jbullet "3.2.4-stable"
-                  :exclusions [jbullet/jbullet stack-alloc/stack-alloc java3d/vecmath]]
-                 [com.github.stephengold/jbullet "1.0.3"]
-                 ;; pure-Java zstd, for .blend files saved by Blender 3.0 and later
-                 [io.airlift/aircompressor "0.27"]
-                 ;; OpenGL through LWJGL 3: windows, and offscreen frames drawn
-                 ;; with EGL and no X server at all (cortex.render)
-                 [org.jmonkeyengine/jme3-lwjgl3 "3.2.4-stable"]
-                 [org.lwjgl/lwjgl-egl "3.2.1"]
-                 ;; lein run's options
-                 [org.clojure/tools.cli "1.1.230"]]
-  :source-paths ["src"]
-  :java-source-paths ["java"]
+  :dependencies ~(into shared-dependencies
+                       '[[org.jmonkeyengine/jme3-jbullet "3.2.4-stable"
+                          :exclusions [jbullet/jbullet stack-alloc/stack-alloc java3d/vecmath]]
+                         [com.github.stephengold/jbullet "1.0.3"]])
+  :source-paths ["src" "engine/jbullet/src"]
+  :java-source-paths ["java" "engine/jbullet/java"]
   :resource-paths ["assets"]
   :javac-options ["--release" "11" "-Xlint:-options"]
   :jvm-opts ["-Djava.util.logging.config.file=logging.properties"]
@@ -46,10 +59,26 @@
             ;; lein evolve: the worm learns to crawl; see org/evolve.org
             "evolve" ["run" "-m" "cortex.evolve"]}
   :profiles {:dev {:source-paths ["dev"]
-                   :dependencies [[org.jmonkeyengine/jme3-blender "3.2.4-stable"]
-                                  [org.clojure/test.check "1.1.1"]
-                                  ;; (user/reset): reload what changed
-                                  [org.clojure/tools.namespace "1.5.0"]]}
+                   :dependencies ~dev-dependencies}
+             ;; lein with-profile +native ...: native Bullet through Minie, in
+             ;; place of jme3-jbullet; cortex's code is the same but for one
+             ;; namespace (cortex.engine) and three Java classes, tangled twice
+             ;; from org/engine.org. Minie 8.2.0 bundles its natives; it is
+             ;; built against jME 3.6.1, whose jme3-core is kept out here so
+             ;; that both engines run on the same jME (3.2.4).
+             :native {:source-paths ^:replace ["src" "engine/native/src" "dev"]
+                      :java-source-paths ^:replace ["java" "engine/native/java"]
+                      :dependencies ~(with-meta
+                                       (into (into shared-dependencies dev-dependencies)
+                                             '[[com.github.stephengold/Minie "8.2.0"
+                                                :exclusions [org.jmonkeyengine/jme3-core]]
+                                               ;; what Leiningen's base profile adds,
+                                               ;; which ^:replace drops
+                                               [nrepl "1.0.0" :exclusions [org.clojure/clojure]]
+                                               [org.nrepl/incomplete "0.1.0"
+                                                :exclusions [org.clojure/clojure]]])
+                                       {:replace true})
+                      :target-path "target/native"}
              ;; lein with-profile +spark ...: cortex.spark runs rollouts as a Spark
              ;; job (see org/rollout.org); the base library never pulls Spark in
              :spark {:source-paths ["spark/src"]

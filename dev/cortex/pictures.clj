@@ -25,7 +25,7 @@
      :angle (get-in obs [:joints "worm-joint" :angle])
      :pivot (let [^com.jme3.bullet.joints.PhysicsJoint j
                   (:physics-joint (first (body/joint-records (:creature s))))
-                  v (body/pivot-in-world (.getBodyA j) (.getPivotA j))]
+                  v (body/pivot-in-world (.getBodyA j) (first (cortex.engine/pivots j)))]
               [(.x v) (.y v) (.z v)])}))
 
 (defn- side-angle

@@ -13,13 +13,11 @@
   `pivot`, `pivot-in-world`."
   (:require [clojure.edn :as edn]
             [clojure.string :as str]
+            [cortex.engine :as engine]
             [cortex.mass :as mass]
             [cortex.sense :as sense]
             [cortex.util :as util])
-  (:import (com.bulletphysics.collision.shapes CompoundShape ConvexHullShape)
-           (com.bulletphysics.linearmath.convexhull HullDesc HullFlags HullLibrary HullResult)
-           (com.bulletphysics.util IntArrayList ObjectArrayList)
-           (com.jme3.bounding BoundingBox)
+  (:import (com.jme3.bounding BoundingBox)
            (com.jme3.bullet.collision.shapes CompoundCollisionShape HullCollisionShape)
            (com.jme3.bullet.control RigidBodyControl)
            (com.jme3.bullet.joints ConeJoint HingeJoint PhysicsJoint SixDofJoint)
@@ -84,7 +82,9 @@
   ^HullCollisionShape [points]
   (let [coords (float-array (mapcat (fn [^Vector3f p] [(.x p) (.y p) (.z p)]) points))]
     (locking hull-lock
-      (HullCollisionShape. coords))))
+      ;; no collision margin, on either engine (see org/engine.org)
+      (doto (HullCollisionShape. coords)
+        (.setMargin (float (engine/hull-margin)))))))
 
 (defn- hull-shape
   "A convex hull collision shape for `geom`: its mesh at the geometry's
@@ -210,9 +210,7 @@
   the inverse of each)."
   [^RigidBodyControl control mass [ix iy iz]]
   (when (pos? (double mass))
-    (doto (.getObjectId control)
-      (.setMassProps (float mass) (javax.vecmath.Vector3f. (float ix) (float iy) (float iz)))
-      (.updateInertiaTensor))))
+    (engine/set-inertia! control mass [ix iy iz])))
 
 (defn- offset-control
   "A RigidBodyControl for `geom` whose body sits at the segment's centre
@@ -641,7 +639,7 @@
   a joint's frame is given to Bullet, which wants it in each body's own
   frame."
   ^Matrix3f [^RigidBodyControl control ^Matrix3f rotation]
-  (.mult (.invert (.getPhysicsRotationMatrix control)) rotation))
+  (.mult (.invert (engine/rotation-matrix control)) rotation))
 
 (defn- number-field
   [constraints k]
@@ -697,23 +695,14 @@
                 ": angles are in radians (90 degrees is (/ Math/PI 2))")
            {:value value}))
 
-(defn- atan2-fast
-  "jBullet's ScalarUtil.atan2Fast, by which its hinge measures the angle
-  its limits hold: exact at multiples of pi/4, monotonic."
-  ^double [^double y ^double x]
-  (let [c1 (/ Math/PI 4) c2 (* 3 c1) ay (Math/abs y)
-        angle (if (>= x 0)
-                (- c1 (* c1 (/ (- x ay) (+ x ay))))
-                (- c2 (* c1 (/ (+ x ay) (- ay x)))))]
-    (if (neg? y) (- angle) angle)))
-
 (defn jbullet-hinge-limits
-  "The [low high] to give jBullet's HingeJoint so that the designer's
+  "The [low high] to give the engine's HingeJoint so that the designer's
   limits [lo hi] (radians, right-hand rule about the designer's axis,
-  second segment relative to the first) hold exactly."
-  [[lo hi]]
-  (let [fast (fn [a] (atan2-fast (Math/sin a) (Math/cos a)))]
-    [(- (fast (double hi))) (- (fast (double lo)))]))
+  second segment relative to the first) hold exactly: see
+  cortex.engine/hinge-limits. (The name is the one it had when jBullet
+  was the only engine.)"
+  [limits]
+  (engine/hinge-limits limits))
 
 (defn- axis-vector
   "A hinge :axis as a non-zero Vector3f: given as one, or as [x y z]."
@@ -740,7 +729,8 @@
             (throw (angle-error "hinge :limit" limit "[-pi, pi]")))
         axis (util/blender-to-jme (.normalize axis))
         [low high] (jbullet-hinge-limits limit)]
-    (doto (HingeJoint. control-a control-b pivot-a pivot-b
+    (doto (HingeJoint. ^PhysicsRigidBody control-a ^PhysicsRigidBody control-b
+                       ^Vector3f pivot-a ^Vector3f pivot-b
                        (.mult (body-frame control-a rotation) axis)
                        (.mult (body-frame control-b rotation) axis))
       (.setLimit (float low) (float high)))))
@@ -798,8 +788,9 @@
   the world now: each end is the joint's pivot carried by its own body.
   A joint that holds keeps it near zero."
   ^double [^PhysicsJoint joint]
-  (.distance (pivot-in-world (.getBodyA joint) (.getPivotA joint))
-             (pivot-in-world (.getBodyB joint) (.getPivotB joint))))
+  (let [[^Vector3f pa ^Vector3f pb] (engine/pivots joint)]
+    (.distance (pivot-in-world (.getBodyA joint) pa)
+               (pivot-in-world (.getBodyB joint) pb))))
 
 (defn connect
   "Join the physical segments `obj-a` and `obj-b` where the empty `joint`
@@ -826,7 +817,7 @@
             (joint-dispatch constraints control-a control-b
                             (pivot control-a center) (pivot control-b center)
                             (.toRotationMatrix (.getWorldRotation joint)))
-          (.setCollisionBetweenLinkedBodys false)))
+          (engine/collide-linked! false)))
       (catch clojure.lang.ExceptionInfo e
         (throw (ex-info (str label ": " (ex-message e))
                         (assoc (ex-data e) :joint (.getName joint)) e))))))
@@ -1007,39 +998,14 @@
       (throw (ex-info (str (label creature) " has no body yet: call body! first")
                       {:creature (.getName creature)}))))
 
-(defn- hull-volume
-  "The volume of the convex hull of `points` (javax.vecmath.Vector3f)."
-  [points]
-  (let [desc (HullDesc. HullFlags/TRIANGLES (count points)
-                        (doto (ObjectArrayList.) (.addAll ^java.util.Collection points)))
-        result (HullResult.)]
-    (if-not (.createConvexHull (HullLibrary.) desc result)
-      0.0
-      (let [^ObjectArrayList vs (.outputVertices result)
-            ^IntArrayList is (.indices result)
-            v (fn [i] (let [^javax.vecmath.Vector3f p (.get vs (.get is (int i)))]
-                        [(double (.x p)) (double (.y p)) (double (.z p))]))]
-        (Math/abs
-         (double
-          (reduce + (for [t (range (quot (.numIndices result) 3))
-                         :let [[ax ay az] (v (* 3 t)) [bx by bz] (v (+ 1 (* 3 t)))
-                               [cx cy cz] (v (+ 2 (* 3 t)))]]
-                     (/ (+ (* ax (- (* by cz) (* bz cy)))
-                           (* ay (- (* bz cx) (* bx cz)))
-                           (* az (- (* bx cy) (* by cx))))
-                        6.0)))))))))
-
 (defn- segment-report
   [^Geometry g]
   (let [^RigidBodyControl c (.getControl g RigidBodyControl)
-        cshape (let [s (.getCShape (.getCollisionShape c))]
-                 (if (instance? CompoundShape s) (.getChildShape ^CompoundShape s 0) s))
-        points (when (instance? ConvexHullShape cshape)
-                 (vec (.getPoints ^ConvexHullShape cshape)))
+        points (engine/hull-points (.getCollisionShape c))
         {:keys [source centre moments]} (.getUserData g "cortex.body/mass")]
     (cond-> {:name (segment-name g) :mass (double (.getMass c))
              :hull-points (count points)
-             :hull-volume (if points (hull-volume points) 0.0)
+             :hull-volume (if points (engine/hull-volume points) 0.0)
              :mass-properties source}
       (= :mesh source) (assoc :centre-of-mass (vec3-of (util/jme-to-blender (util/vec3 centre)))
                               :principal-moments (vec moments)))))

@@ -19,9 +19,9 @@
   joint's strength. Bad actions are ex-infos naming the joint, raised
   before any torque is applied."
   (:require [clojure.string :as str]
+            [cortex.engine :as engine]
             [cortex.proprioception :as p])
-  (:import (com.bulletphysics.dynamics RigidBody)
-           (com.jme3.bullet.joints PhysicsJoint)
+  (:import (com.jme3.bullet.joints PhysicsJoint)
            (com.jme3.math Vector3f)
            (com.jme3.scene Node)))
 
@@ -37,8 +37,9 @@
 
 (defn- v3 [^Vector3f v] [(double (.x v)) (double (.y v)) (double (.z v))])
 
-(defn- mass-of ^double [^RigidBody rb]
-  (if (zero? (.getInvMass rb)) 0.0 (/ 1.0 (.getInvMass rb))))
+(defn- mass-of ^double [rb]
+  (let [inv (engine/inverse-mass rb)]
+    (if (zero? inv) 0.0 (/ 1.0 inv))))
 
 (defn default-strength
   "Twice the torque that holds the lighter moving segment straight out
@@ -53,10 +54,10 @@
   the unit `axis`, both in the body's own frame (jME's axes): its own
   moment about a parallel axis through its centre of mass, plus m r^2.
   Infinite for a static body."
-  ^double [^RigidBody rb axis pivot]
-  (if (zero? (.getInvMass rb))
+  ^double [rb axis pivot]
+  (if (zero? (engine/inverse-mass rb))
     Double/POSITIVE_INFINITY
-    (let [inv (let [v (.getInvInertiaDiagLocal rb (javax.vecmath.Vector3f.))] [(.x v) (.y v) (.z v)])
+    (let [inv (engine/inverse-inertia rb)
           own-inverse (reduce + (map (fn [i a] (* (double i) (double a) (double a))) inv axis))
           own (if (pos? own-inverse) (/ 1.0 own-inverse) Double/POSITIVE_INFINITY)
           along (p/dot pivot axis)
@@ -88,9 +89,9 @@
 (defn muscle
   "What acting on the joint of proprioception sensor `sensor` needs:
   the sensor with :strength, :kp, :kd and :inertia."
-  [{:keys [type axis frame-a frame-b ^RigidBody rb-a ^RigidBody rb-b record] :as sensor}]
+  [{:keys [type axis frame-a frame-b rb-a rb-b record] :as sensor}]
   (let [^PhysicsJoint j (:physics-joint record)
-        pa (v3 (.getPivotA j)) pb (v3 (.getPivotB j))
+        [pa pb] (map v3 (engine/pivots j))
         strength (given sensor :strength
                         #(default-strength [[(mass-of rb-a) (Math/sqrt (p/dot pa pa))]
                                             [(mass-of rb-b) (Math/sqrt (p/dot pb pb))]]))
@@ -210,13 +211,8 @@
       (p/rotate frame (p/blender->jme effort)))))
 
 (defn- apply-torque!
-  [{:keys [^RigidBody rb-a ^RigidBody rb-b]} [x y z]]
-  (let [t (javax.vecmath.Vector3f. (float x) (float y) (float z))]
-    (.applyTorque rb-b t)
-    (.activate rb-b)
-    (.negate t)
-    (.applyTorque rb-a t)
-    (.activate rb-a)))
+  [{:keys [rb-a rb-b]} torque]
+  (engine/apply-torques! rb-a rb-b torque))
 
 (defn apply-efforts!
   "Apply `efforts` (from `efforts`) at the joints of `muscles`."

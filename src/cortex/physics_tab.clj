@@ -19,6 +19,7 @@
             [cortex.blender :as blender]
             [cortex.blender.rigid-body :as physics]
             [cortex.body :as body]
+            [cortex.engine :as engine]
             [cortex.sense :as sense]
             [cortex.util :as util])
   (:import (com.jme3.bullet.collision.shapes BoxCollisionShape CapsuleCollisionShape
@@ -27,11 +28,9 @@
                                              HullCollisionShape MeshCollisionShape
                                              SphereCollisionShape)
            (com.jme3.bullet.control RigidBodyControl)
-           (com.bulletphysics.linearmath ScalarUtil)
            (com.jme3.bullet.joints PhysicsJoint SixDofJoint SliderJoint)
            (com.jme3.math Matrix3f Vector3f)
            (com.jme3.scene Geometry Mesh Node Spatial)
-           (com.bulletphysics.collision.dispatch CollisionObject)
            (cortex FrameHingeJoint MeteredSixDofJoint MeteredSliderJoint)
            (java.util.concurrent ConcurrentHashMap)
            (java.util.logging Logger)
@@ -189,7 +188,7 @@
           "MESH" [(let [^com.jme3.bullet.collision.shapes.CollisionShape
                         s (if static?
                             (MeshCollisionShape. (merged-mesh geoms))
-                            (GImpactCollisionShape. (merged-mesh geoms)))]
+                            (engine/gimpact-shape (merged-mesh geoms)))]
                     (.setScale s ^Vector3f scale)
                     s)]
           "COMPOUND" [(hull) [(str "rigid body " (pr-str name)
@@ -244,17 +243,15 @@
           (.setCollideWithGroups c (int (bit-and (long groups) 0xfffff))))
         (when (:kinematic rb) (.setKinematic c true))
         (when empty
-          (let [^com.bulletphysics.dynamics.RigidBody rbody (.getObjectId c)]
-            (.setInvInertiaDiagLocal rbody (javax.vecmath.Vector3f.))
-            (.updateInertiaTensor rbody)))
+          (engine/clear-inertia! c))
         (when (contains? rb :use-deactivation)
           (if (:use-deactivation rb)
             (do (when (and (util/finite? (:lin-sleep-thresh rb)) (util/finite? (:ang-sleep-thresh rb)))
                   (.setSleepingThresholds c (float (:lin-sleep-thresh rb)) (float (:ang-sleep-thresh rb))))
                 (when (and (:use-start-deactivated rb) (pos? mass))
-                  (.setActivationState (.getObjectId c) CollisionObject/WANTS_DEACTIVATION)))
+                  (engine/set-sleep! c :start-asleep)))
             (when-not (:kinematic rb)
-              (.setActivationState (.getObjectId c) CollisionObject/DISABLE_DEACTIVATION))))
+              (engine/set-sleep! c :never))))
         (.addControl spatial c)
         {:object name :control c :spatial spatial :shape (:shape rb) :mass mass
          :warnings (cond-> (vec warnings)
@@ -365,9 +362,11 @@
   (radians). jBullet, like the Bullet 2.7 it ports, measures a hinge's
   angle with ScalarUtil/atan2Fast, an approximation off by up to a few
   hundredths of a radian; a limit is compared with that measure, so
-  the limit is passed through the same approximation."
+  the limit is passed through the same approximation. Native Bullet's
+  frame hinge measures exactly, and takes the angle as it is: see
+  cortex.engine/frame-hinge-limit."
   [angle]
-  (ScalarUtil/atan2Fast (float (Math/sin angle)) (float (Math/cos angle))))
+  (engine/frame-hinge-limit angle))
 
 (defmethod constraint-joint "HINGE" [_ {:keys [name rbc a b pivot-a pivot-b rot-a rot-b]}]
   (let [j (FrameHingeJoint. a b pivot-a pivot-b rot-a rot-b)]
@@ -413,7 +412,7 @@
   "Where the frame (`pivot`, `rot`, in `c`'s body) is in the world now:
   [origin rotation]."
   [^RigidBodyControl c ^Vector3f pivot ^Matrix3f rot]
-  (let [r (.getPhysicsRotationMatrix c)]
+  (let [r (engine/rotation-matrix c)]
     [(.add (.getPhysicsLocation c) (.mult r pivot)) (.mult r rot)]))
 
 (defn- point-velocity
@@ -551,7 +550,7 @@
                  :pivot-a (body/pivot a center) :pivot-b (body/pivot b center)
                  :rot-a (body/body-frame a frame) :rot-b (body/body-frame b frame)}
             {:keys [^PhysicsJoint joint warnings] :as made} (constraint-joint type ctx)]
-        (.setCollisionBetweenLinkedBodys joint (not (:disable-collisions rbc)))
+        (engine/collide-linked! joint (not (:disable-collisions rbc)))
         (when-let [sc (:spring-control made)]
           (.addControl ^Spatial (:spatial (body-of name rbc bodies :ob2))
                        ^com.jme3.scene.control.Control sc))
@@ -688,7 +687,7 @@
           (when @enabled
             (doseq [{:keys [object ^PhysicsJoint joint breaking-threshold]} breakable
                     :when (and (not (.containsKey ^java.util.Map broken object))
-                               (>= (.getAppliedImpulse joint) (double breaking-threshold)))]
+                               (>= (engine/applied-impulse joint) (double breaking-threshold)))]
               (.remove ^com.jme3.bullet.PhysicsSpace s joint)
               (.destroy joint)
               (.put ^java.util.Map broken object n))))))))

@@ -17,15 +17,11 @@
   order), in the joint empty's frame as the first carries it, Blender's
   axes; a hinge's angle is positive by the right-hand rule about its
   :axis, the angle its :limit holds; all zero in the build pose."
-  (:require [cortex.body :as body])
-  (:import (com.bulletphysics.dynamics RigidBody)
-           (com.bulletphysics.dynamics.constraintsolver ConeTwistConstraint HingeConstraint
-                                                        TypedConstraint)
-           (com.bulletphysics.linearmath MatrixUtil Transform)
-           (com.jme3.bullet.control RigidBodyControl)
+  (:require [cortex.body :as body]
+            [cortex.engine :as engine])
+  (:import (com.jme3.bullet.control RigidBodyControl)
            (com.jme3.bullet.joints PhysicsJoint)
-           (com.jme3.scene Geometry Node)
-           (javax.vecmath Quat4f)))
+           (com.jme3.scene Geometry Node)))
 
 (set! *warn-on-reflection* true)
 
@@ -136,34 +132,20 @@
     {:twist (wrap-angle t) :swing [sy sz]}))
 
 (defn rigid-body
-  "The jBullet RigidBody of segment `geom`."
-  ^RigidBody [^Geometry geom]
+  "The engine's body of segment `geom` (see cortex.engine/rigid-body)."
+  [^Geometry geom]
   (let [^RigidBodyControl c (.getControl geom RigidBodyControl)]
-    (.getObjectId c)))
+    (engine/rigid-body c)))
 
 (defn orientation
-  "How `rb` is turned now, [x y z w], jME's axes."
-  [^RigidBody rb]
-  (let [q (.getOrientation rb (Quat4f.))]
-    [(double (.x q)) (double (.y q)) (double (.z q)) (double (.w q))]))
+  "How the engine body `rb` is turned now, [x y z w], jME's axes."
+  [rb]
+  (engine/orientation rb))
 
 (defn angular-velocity
-  "`rb`'s angular velocity now, [x y z], jME's axes."
-  [^RigidBody rb]
-  (let [v (.getAngularVelocity rb (javax.vecmath.Vector3f.))]
-    [(double (.x v)) (double (.y v)) (double (.z v))]))
-
-(defn- basis-rotation
-  "The rotation of a jBullet Transform's basis, [x y z w]. A hinge's
-  second frame is left-handed (its third column is minus the axis, as in
-  Bullet's C++ original); its third column is turned round first."
-  [^Transform t]
-  (let [q (Quat4f.)
-        m (javax.vecmath.Matrix3f. (.basis t))]
-    (when (neg? (.determinant m))
-      (dotimes [i 3] (.setElement m i 2 (- (.getElement m i 2)))))
-    (MatrixUtil/getRotation m q)
-    [(double (.x q)) (double (.y q)) (double (.z q)) (double (.w q))]))
+  "The engine body `rb`'s angular velocity now, [x y z], jME's axes."
+  [rb]
+  (engine/angular-velocity rb))
 
 (defn- designer-axis
   "A hinge description's :axis (Blender's axes, X when absent), unit,
@@ -181,20 +163,13 @@
   hinge :axis, its axis in that frame (jME's axes): see the chapter for
   where each comes from."
   [{:keys [type description ^PhysicsJoint physics-joint rotation body-rotations]}]
-  (let [^TypedConstraint c (.getObjectId physics-joint)
-        from-empty (fn [[qa qb]]
+  (let [from-empty (fn [[qa qb]]
                      {:frame-a (q* (q-conj qa) rotation) :frame-b (q* (q-conj qb) rotation)
                       :axis (when (= type :hinge) (designer-axis description))})]
     (cond
       body-rotations (from-empty body-rotations)
-      (instance? HingeConstraint c)
-      {:frame-a (basis-rotation (.getAFrame ^HingeConstraint c (Transform.)))
-       :frame-b (basis-rotation (.getBFrame ^HingeConstraint c (Transform.)))
-       :axis [0.0 0.0 1.0]}
-      (instance? ConeTwistConstraint c)
-      {:frame-a (basis-rotation (.getAFrame ^ConeTwistConstraint c (Transform.)))
-       :frame-b (basis-rotation (.getBFrame ^ConeTwistConstraint c (Transform.)))}
-      :else (from-empty [[0.0 0.0 0.0 1.0] [0.0 0.0 0.0 1.0]]))))
+      :else (or (engine/joint-frames physics-joint)
+                (from-empty [[0.0 0.0 0.0 1.0] [0.0 0.0 0.0 1.0]])))))
 
 (defn sensor
   "What reading the joint `record` (see cortex.body/joint-records)

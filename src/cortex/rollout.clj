@@ -14,11 +14,11 @@
   (:require [clojure.java.io :as io]
             [clojure.string :as str]
             [cortex.body :as body]
+            [cortex.engine :as engine]
             [cortex.proprioception :as p]
             [cortex.sim :as sim]
             [cortex.util :as util])
-  (:import (com.bulletphysics.dynamics RigidBody)
-           (com.jme3.scene Node)
+  (:import            (com.jme3.scene Node)
            (java.util Random)
            (java.util.concurrent Callable ExecutorService Executors Future ThreadFactory)
            (java.util.concurrent.atomic AtomicLong)))
@@ -129,8 +129,9 @@
 
 (defn- as-doubles [v] (mapv double v))
 
-(defn- mass ^double [^RigidBody rb]
-  (if (zero? (.getInvMass rb)) 0.0 (/ 1.0 (.getInvMass rb))))
+(defn- mass ^double [rb]
+  (let [inv (engine/inverse-mass rb)]
+    (if (zero? inv) 0.0 (/ 1.0 inv))))
 
 (defn- centre
   "The centre of mass of the `weights` ({segment mass}) in `observation`."

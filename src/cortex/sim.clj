@@ -10,20 +10,19 @@
   `steps`, `sim-time`, `last-efforts` (the torques the last step applied),
   `destroy!`."
   (:require [cortex.body :as body]
+            [cortex.engine :as engine]
             [cortex.muscle :as muscle]
             [cortex.proprioception :as p]
             [cortex.touch :as touch]
             [cortex.util :as util]
             [cortex.world :as world])
-  (:import (com.bulletphysics.dynamics RigidBody)
-           (com.jme3.app SimpleApplication)
+  (:import            (com.jme3.app SimpleApplication)
            (com.jme3.bullet PhysicsSpace PhysicsSpace$BroadphaseType)
            (com.jme3.bullet.control RigidBodyControl)
            (com.jme3.bullet.objects PhysicsRigidBody)
            (com.jme3.math ColorRGBA Vector3f)
            (com.jme3.scene Geometry Node)
-           (java.util IdentityHashMap Map)
-           (javax.vecmath Quat4f)))
+           (java.util IdentityHashMap Map)))
 
 (set! *warn-on-reflection* true)
 
@@ -40,8 +39,9 @@
   "A PhysicsSpace made as BulletAppState makes one: world bounds of
   +-10000, the DBVT broadphase."
   ^PhysicsSpace []
-  (PhysicsSpace. (Vector3f. -10000 -10000 -10000) (Vector3f. 10000 10000 10000)
-                 PhysicsSpace$BroadphaseType/DBVT))
+  (engine/configure-space!
+   (PhysicsSpace. (Vector3f. -10000 -10000 -10000) (Vector3f. 10000 10000 10000)
+                  PhysicsSpace$BroadphaseType/DBVT)))
 
 (defn floor
   "A static grey box named \"floor\", 400 by 400 units (room for a
@@ -64,7 +64,7 @@
   (let [segs (vec (for [^Geometry g (body/segments node)
                         :let [^RigidBodyControl c (.getControl g RigidBodyControl)]
                         :when c]
-                    [(body/segment-name g) g (.getObjectId c)]))
+                    [(body/segment-name g) g (engine/rigid-body c)]))
         twice (sort (for [[n k] (frequencies (map first segs)) :when (> k 1)] n))]
     (when (seq twice)
       (throw (ex-info (str "segments share the names " (pr-str (vec twice))
@@ -155,14 +155,11 @@
   (/ (double (steps sim)) 60.0))
 
 (defn- segment-state
-  [^RigidBody rb]
-  (let [v (javax.vecmath.Vector3f.)
-        q (.getOrientation rb (Quat4f.))
-        triple (fn [^javax.vecmath.Vector3f v] [(.x v) (.y v) (.z v)])]
-    {:position (triple (.getCenterOfMassPosition rb v))
-     :rotation [(.x q) (.y q) (.z q) (.w q)]
-     :velocity (triple (.getLinearVelocity rb v))
-     :angular-velocity (triple (.getAngularVelocity rb v))}))
+  [rb]
+  {:position (engine/position rb)
+   :rotation (engine/orientation rb)
+   :velocity (engine/linear-velocity rb)
+   :angular-velocity (engine/angular-velocity rb)})
 
 (declare sync!)
 

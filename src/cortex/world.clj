@@ -10,6 +10,7 @@
   `add-element!`, `fire-cannon-ball`, `standard-debug-controls`, `no-op`,
   `physics-space`."
   (:require [clojure.string :as str]
+            [cortex.engine :as engine]
             [cortex.util :as util])
   (:import (com.jme3.app FlyCamAppState LegacyApplication SimpleApplication)
            (com.jme3.app.state AbstractAppState AppState)
@@ -215,6 +216,8 @@
                   physics-state (doto (BulletAppState.)
                                   (.setThreadingType BulletAppState$ThreadingType/SEQUENTIAL))]
               (.attach (.getStateManager this) physics-state)
+              ;; the engine's settings that cortex makes the same (org/engine.org)
+              (some-> (.getPhysicsSpace physics-state) engine/configure-space!)
               (swap! state assoc ::physics physics-state)
               (.attachChild (.getRootNode this) root-node)
               (.addAll (.getPhysicsSpace physics-state) (.getRootNode this))

@@ -6,9 +6,9 @@
             [cortex.muscle :as m]
             [cortex.proprioception :as p]
             [cortex.sim :as sim]
+            [cortex.engine :as engine]
             [cortex.util :as util])
-  (:import (com.bulletphysics.dynamics RigidBody)
-           (com.jme3.math Quaternion)))
+  (:import (com.jme3.math Quaternion)))
 
 (set! *warn-on-reflection* true)
 
@@ -84,7 +84,7 @@
 (deftest muscles-are-internal
   (let [s (sim/simulation (f/chain 6 0) {:gravity [0 0 0]})
         muscles (:muscles s)
-        masses (into {} (for [[n ^RigidBody rb] (:segments s)] [n (/ 1.0 (.getInvMass rb))]))
+        masses (into {} (for [[n rb] (:segments s)] [n (/ 1.0 (engine/inverse-mass rb))]))
         actions (fn [t] (into {} (for [[i [n {:keys [type strength]}]] (map-indexed vector (sort muscles))]
                                    [n (let [a (* strength (Math/sin (+ (* 7 t) i)))]
                                         (if (= type :hinge) a [a (* 0.5 a) (- a)]))])))

@@ -53,7 +53,7 @@
   "Where cortex's body of object `name` is: [rotation rows translation], jME axes."
   [creature name]
   (when-let [c (control creature name)]
-    (let [m (.getPhysicsRotationMatrix c) p (.getPhysicsLocation c)]
+    (let [m (cortex.engine/rotation-matrix c) p (.getPhysicsLocation c)]
       [(vec (for [i (range 3)] (vec (for [j (range 3)] (double (.get m (int i) (int j)))))))
        [(double (.x p)) (double (.y p)) (double (.z p))]])))
 
@@ -232,7 +232,7 @@
             j (:joint (first (filter #(= "hang-light" (:object %)) joints)))
             w (world/world (util/nodify [c]) {} world/no-op world/no-op)]
         (world/run-world! w 30)
-        (is (< (Math/abs (- (/ 9.81 240) (.getAppliedImpulse ^com.jme3.bullet.joints.PhysicsJoint j))) 0.005))))
+        (is (< (Math/abs (- (/ 9.81 240) (cortex.engine/applied-impulse j))) 0.005))))
     (testing "what happens after the break is chaotic: present numbers, not Blender's bar"
       (is (< (relative-median r 1) 0.02))
       (is (< (relative-median r 2) 0.04)))))

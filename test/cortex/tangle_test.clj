@@ -39,7 +39,7 @@
     (doseq [{:keys [file reason]} (tangle/drift "org")]
       (is (nil? reason) (str file " " reason ": run lein tangle"))))
   (testing "no source file lives outside the book"
-    (doseq [f (tangle/untangled "org" ["src" "test" "java" "dev" "spark"] [".clj" ".java"])]
+    (doseq [f (tangle/untangled "org" ["src" "test" "java" "dev" "spark" "engine"] [".clj" ".java"])]
       (is (nil? f) (str f " is not tangled from any org/ chapter")))))
 
 (deftest generated-files-name-their-chapter
@@ -59,7 +59,7 @@
                             [(.getCanonicalFile (java.io.File. (.getParentFile ^java.io.File chapter)
                                                                ^String t))
                              (.getName chapter)]))]
-      (doseq [root ["src" "test" "dev" "java" "spark"]
+      (doseq [root ["src" "test" "dev" "java" "spark" "engine"]
               ^java.io.File f (file-seq (java.io.File. ^String root))
               :when (and (.isFile f) (re-find #"\.(clj|java)$" (.getName f)))
               :let [chapter (owners (.getCanonicalFile f))

@@ -1,0 +1,268 @@
+;; Generated from org/engine.org by lein tangle: edit the chapter, not this file.
+(ns cortex.engine
+  "The physics engine cortex runs on, jBullet (jme3-jbullet 3.2.4): what
+  differs between it and native Bullet (see org/engine.org), behind one
+  set of functions. A body's engine object (`rigid-body`) is jBullet's
+  own RigidBody, read without going through jME."
+  (:refer-clojure :exclude [name])
+  (:import (com.bulletphysics.collision.broadphase Dispatcher)
+           (com.bulletphysics.collision.narrowphase ManifoldPoint PersistentManifold)
+           (com.bulletphysics.collision.dispatch CollisionObject)
+           (com.bulletphysics.collision.shapes CompoundShape ConvexHullShape)
+           (com.bulletphysics.dynamics DynamicsWorld RigidBody)
+           (com.bulletphysics.dynamics.constraintsolver ConeTwistConstraint HingeConstraint)
+           (com.bulletphysics.linearmath MatrixUtil ScalarUtil Transform)
+           (com.bulletphysics.linearmath.convexhull HullDesc HullFlags HullLibrary HullResult)
+           (com.bulletphysics.util IntArrayList ObjectArrayList)
+           (com.jme3.bullet PhysicsSpace)
+           (com.jme3.bullet.collision PhysicsCollisionObject)
+           (com.jme3.bullet.collision.shapes CollisionShape GImpactCollisionShape)
+           (com.jme3.bullet.joints PhysicsJoint)
+           (com.jme3.bullet.objects PhysicsRigidBody)
+           (com.jme3.math Matrix3f Vector3f)
+           (com.jme3.scene Mesh)
+           (javax.vecmath Quat4f)))
+
+(set! *warn-on-reflection* true)
+
+(def name
+  "Which engine this is: :jbullet or :native."
+  :jbullet)
+
+(defn rigid-body
+  "The engine's own object for the jME body `body` (a RigidBodyControl
+  or PhysicsRigidBody): here jBullet's RigidBody."
+  ^RigidBody [^PhysicsRigidBody body]
+  (.getObjectId body))
+
+(defn collision-object
+  "What the engine's contact manifolds name `body` by (see `reduce-contacts`)."
+  [^PhysicsRigidBody body]
+  (.getObjectId body))
+
+(defn rotation-matrix
+  "How the jME body `body` is turned now, a new Matrix3f."
+  ^Matrix3f [^PhysicsRigidBody body]
+  (.getPhysicsRotationMatrix body))
+
+(defn applied-impulse
+  "The impulse `joint` applied in the last step (see ImpulseMeter)."
+  ^double [^PhysicsJoint joint]
+  (.getAppliedImpulse joint))
+
+(defn gimpact-shape
+  "A GImpact (moving triangle mesh) collision shape of `mesh`."
+  ^CollisionShape [^Mesh mesh]
+  (GImpactCollisionShape. mesh))
+
+(defn orientation
+  "How the engine body `rb` is turned now, [x y z w], jME's axes."
+  [^RigidBody rb]
+  (let [q (.getOrientation rb (Quat4f.))]
+    [(double (.x q)) (double (.y q)) (double (.z q)) (double (.w q))]))
+
+(defn- triple [^javax.vecmath.Vector3f v] [(double (.x v)) (double (.y v)) (double (.z v))])
+
+(defn position
+  "Where the engine body `rb`'s centre of mass is now, [x y z]."
+  [^RigidBody rb]
+  (triple (.getCenterOfMassPosition rb (javax.vecmath.Vector3f.))))
+
+(defn linear-velocity
+  "`rb`'s velocity now, [x y z]."
+  [^RigidBody rb]
+  (triple (.getLinearVelocity rb (javax.vecmath.Vector3f.))))
+
+(defn angular-velocity
+  "`rb`'s angular velocity now, [x y z], jME's axes."
+  [^RigidBody rb]
+  (triple (.getAngularVelocity rb (javax.vecmath.Vector3f.))))
+
+(defn inverse-mass
+  "1/m of the engine body `rb`, 0 for a static one."
+  ^double [^RigidBody rb]
+  (.getInvMass rb))
+
+(defn inverse-inertia
+  "The inverse principal moments of `rb`, in its own frame, [x y z]."
+  [^RigidBody rb]
+  (triple (.getInvInertiaDiagLocal rb (javax.vecmath.Vector3f.))))
+
+(defn apply-torques!
+  "Torque `t` ([x y z], world) on the engine body `rb-b` and -t on `rb-a`,
+  for the next step; both woken."
+  [^RigidBody rb-a ^RigidBody rb-b [x y z]]
+  (let [t (javax.vecmath.Vector3f. (float x) (float y) (float z))]
+    (.applyTorque rb-b t)
+    (.activate rb-b)
+    (.negate t)
+    (.applyTorque rb-a t)
+    (.activate rb-a)))
+
+(defn set-inertia!
+  "Give `body` (a jME PhysicsRigidBody) mass `mass` and the principal
+  moments [ix iy iz] (Bullet keeps the inverse of each)."
+  [^PhysicsRigidBody body mass [ix iy iz]]
+  (doto (.getObjectId body)
+    (.setMassProps (float mass) (javax.vecmath.Vector3f. (float ix) (float iy) (float iz)))
+    (.updateInertiaTensor)))
+
+(defn clear-inertia!
+  "Make `body` unable to turn: inverse inertia 0."
+  [^PhysicsRigidBody body]
+  (doto (.getObjectId body)
+    (.setInvInertiaDiagLocal (javax.vecmath.Vector3f.))
+    (.updateInertiaTensor)))
+
+(defn set-sleep!
+  "`:start-asleep` (it sleeps until something wakes it) or `:never`
+  (it never sleeps) for `body`."
+  [^PhysicsRigidBody body how]
+  (.setActivationState (.getObjectId body)
+                       (case how
+                         :start-asleep CollisionObject/WANTS_DEACTIVATION
+                         :never CollisionObject/DISABLE_DEACTIVATION)))
+
+(defn hull-points
+  "The points of `shape`'s hull (or of its first child's, for a compound
+  shape), [[x y z] ...], or nil when it is no hull."
+  [^CollisionShape shape]
+  (let [s (.getCShape shape)
+        s (if (instance? CompoundShape s) (.getChildShape ^CompoundShape s 0) s)]
+    (when (instance? ConvexHullShape s)
+      (mapv triple (.getPoints ^ConvexHullShape s)))))
+
+(defn hull-volume
+  "The volume of the convex hull of `points` ([[x y z] ...])."
+  ^double [points]
+  (let [ps (doto (ObjectArrayList.)
+             (.addAll ^java.util.Collection
+                      (map (fn [[x y z]] (javax.vecmath.Vector3f. (float x) (float y) (float z))) points)))
+        desc (HullDesc. HullFlags/TRIANGLES (count points) ps)
+        result (HullResult.)]
+    (if-not (.createConvexHull (HullLibrary.) desc result)
+      0.0
+      (let [^ObjectArrayList vs (.outputVertices result)
+            ^IntArrayList is (.indices result)
+            v (fn [i] (let [^javax.vecmath.Vector3f p (.get vs (.get is (int i)))]
+                        [(double (.x p)) (double (.y p)) (double (.z p))]))]
+        (Math/abs
+         (double
+          (reduce + (for [t (range (quot (.numIndices result) 3))
+                         :let [[ax ay az] (v (* 3 t)) [bx by bz] (v (+ 1 (* 3 t)))
+                               [cx cy cz] (v (+ 2 (* 3 t)))]]
+                     (/ (+ (* ax (- (* by cz) (* bz cy)))
+                           (* ay (- (* bz cx) (* bx cz)))
+                           (* az (- (* bx cy) (* by cx))))
+                        6.0)))))))))
+
+(defn hull-margin
+  "The collision margin cortex gives hull shapes: jme3-jbullet's own, 0."
+  ^double []
+  0.0)
+
+(defn atan2-fast
+  "jBullet's ScalarUtil.atan2Fast, by which its hinge measures the angle
+  its limits hold: exact at multiples of pi/4, monotonic."
+  ^double [^double y ^double x]
+  (let [c1 (/ Math/PI 4) c2 (* 3 c1) ay (Math/abs y)
+        angle (if (>= x 0)
+                (- c1 (* c1 (/ (- x ay) (+ x ay))))
+                (- c2 (* c1 (/ (+ x ay) (- ay x)))))]
+    (if (neg? y) (- angle) angle)))
+
+(defn hinge-limits
+  "The [low high] to give a jME HingeJoint (made from two axes) so that
+  the designer's limits [lo hi] (radians, right-hand rule about the
+  designer's axis, second segment relative to the first) hold exactly:
+  jBullet's angle is -atan2Fast of the designer's."
+  [[lo hi]]
+  (let [fast (fn [a] (atan2-fast (Math/sin a) (Math/cos a)))]
+    [(- (fast (double hi))) (- (fast (double lo)))]))
+
+(defn frame-hinge-limit
+  "The limit to give a FrameHingeJoint so that it stops at `angle`:
+  jBullet compares its limits with atan2Fast of the angle."
+  [angle]
+  (ScalarUtil/atan2Fast (float (Math/sin angle)) (float (Math/cos angle))))
+
+(defn collide-linked!
+  "Whether the two bodies `joint` links collide with each other."
+  [^PhysicsJoint joint collide?]
+  (.setCollisionBetweenLinkedBodys joint (boolean collide?))
+  joint)
+
+(defn pivots
+  "[pivot-a pivot-b] of `joint`: its point in each body's frame."
+  [^PhysicsJoint joint]
+  [(.getPivotA joint) (.getPivotB joint)])
+
+(defn- basis-rotation
+  "The rotation of a jBullet Transform's basis, [x y z w]. A hinge's
+  second frame is left-handed (its third column is minus the axis, as in
+  Bullet's C++ original); its third column is turned round first."
+  [^Transform t]
+  (let [q (Quat4f.)
+        m (javax.vecmath.Matrix3f. (.basis t))]
+    (when (neg? (.determinant m))
+      (dotimes [i 3] (.setElement m i 2 (- (.getElement m i 2)))))
+    (MatrixUtil/getRotation m q)
+    [(double (.x q)) (double (.y q)) (double (.z q)) (double (.w q))]))
+
+(defn joint-frames
+  "The frames a joint is read in, when the engine keeps them: for a
+  hinge given whole frames (a FrameHingeJoint), {:frame-a q :frame-b q
+  :axis [0 0 1]}, its frame in each body, the axis its Z; for jBullet's
+  cone joint {:frame-a q :frame-b q}; nil for any other joint."
+  [^PhysicsJoint joint]
+  (let [c (.getObjectId joint)]
+    (cond
+      (instance? HingeConstraint c)
+      {:frame-a (basis-rotation (.getAFrame ^HingeConstraint c (Transform.)))
+       :frame-b (basis-rotation (.getBFrame ^HingeConstraint c (Transform.)))
+       :axis [0.0 0.0 1.0]}
+      (instance? ConeTwistConstraint c)
+      {:frame-a (basis-rotation (.getAFrame ^ConeTwistConstraint c (Transform.)))
+       :frame-b (basis-rotation (.getBFrame ^ConeTwistConstraint c (Transform.)))})))
+
+(defn configure-space!
+  "Set `space` up as cortex simulates: here jBullet's defaults, already."
+  ^PhysicsSpace [^PhysicsSpace space]
+  space)
+
+(defn- manifold-contact
+  "[touching? summed-normal-impulse] of the points of manifold `m`."
+  [^PersistentManifold m ^double touch-distance]
+  (let [n (.getNumContacts m)]
+    (loop [i 0 touching? false impulse 0.0]
+      (if (< i n)
+        (let [^ManifoldPoint p (.getContactPoint m i)
+              d (.getDistance p)
+              imp (if (<= d 0.0) (double (.appliedImpulse p)) 0.0)]
+          (recur (inc i)
+                 (or touching? (<= d touch-distance) (pos? imp))
+                 (+ impulse imp)))
+        [touching? impulse]))))
+
+(defn reduce-contacts
+  "Fold `f` over the contact manifolds of `space`'s last step: (f acc o0
+  o1 touching? impulse), o0 and o1 the two collision objects (as
+  `collision-object` names bodies), touching? when a point lies within
+  `touch-distance` or carried an impulse, impulse the summed normal
+  impulse of the points in contact. `wanted?` (of a collision object)
+  picks the manifolds worth reading; the others are skipped."
+  [^PhysicsSpace space touch-distance wanted? f init]
+  (let [^DynamicsWorld world (.getDynamicsWorld space)
+        ^Dispatcher dispatcher (.getDispatcher world)
+        n (.getNumManifolds dispatcher)
+        d (double touch-distance)]
+    (loop [i 0 acc init]
+      (if (< i n)
+        (let [^PersistentManifold m (.getManifoldByIndexInternal dispatcher i)
+              b0 (.getBody0 m) b1 (.getBody1 m)]
+          (recur (inc i)
+                 (if (or (wanted? b0) (wanted? b1))
+                   (let [[touching? impulse] (manifold-contact m d)]
+                     (f acc b0 b1 touching? impulse))
+                   acc)))
+        acc))))

@@ -1,0 +1,210 @@
+;; Generated from org/engine.org by lein tangle: edit the chapter, not this file.
+(ns cortex.engine
+  "The physics engine cortex runs on, native Bullet through Minie: what
+  differs between it and jBullet (see org/engine.org), behind one set of
+  functions. A body's engine object (`rigid-body`) is the jME
+  PhysicsRigidBody itself."
+  (:refer-clojure :exclude [name])
+  (:import (com.jme3.bullet PhysicsSpace SolverInfo)
+           (com.jme3.bullet.collision ManifoldPoints PersistentManifolds PhysicsCollisionObject)
+           (com.jme3.bullet.collision.shapes CollisionShape CompoundCollisionShape
+                                             GImpactCollisionShape HullCollisionShape)
+           (com.jme3.bullet.collision.shapes.infos ChildCollisionShape)
+           (com.jme3.bullet.joints PhysicsJoint Constraint)
+           (com.jme3.bullet.objects PhysicsRigidBody)
+           (com.jme3.math Matrix3f Quaternion Vector3f)
+           (com.jme3.scene Mesh)))
+
+(set! *warn-on-reflection* true)
+
+(def name
+  "Which engine this is: :jbullet or :native."
+  :native)
+
+(defn rigid-body
+  "The engine's own object for the jME body `body`: here `body` itself."
+  ^PhysicsRigidBody [^PhysicsRigidBody body]
+  body)
+
+(defn collision-object
+  "What the engine's contact manifolds name `body` by (see `reduce-contacts`)."
+  [^PhysicsCollisionObject body]
+  body)
+
+(defn rotation-matrix
+  "How the jME body `body` is turned now, a new Matrix3f."
+  ^Matrix3f [^PhysicsRigidBody body]
+  (.getPhysicsRotationMatrix body (Matrix3f.)))
+
+(defn applied-impulse
+  "The impulse `joint` applied in the last step (its feedback must be on)."
+  ^double [^Constraint joint]
+  (.getAppliedImpulse joint))
+
+(defn gimpact-shape
+  "A GImpact (moving triangle mesh) collision shape of `mesh`."
+  ^CollisionShape [^Mesh mesh]
+  (GImpactCollisionShape. ^"[Lcom.jme3.scene.Mesh;" (into-array Mesh [mesh])))
+
+(defn orientation
+  "How the engine body `rb` is turned now, [x y z w], jME's axes."
+  [^PhysicsRigidBody rb]
+  (let [q (.getPhysicsRotation rb (Quaternion.))]
+    [(double (.getX q)) (double (.getY q)) (double (.getZ q)) (double (.getW q))]))
+
+(defn- triple [^Vector3f v] [(double (.x v)) (double (.y v)) (double (.z v))])
+
+(defn position
+  "Where the engine body `rb`'s centre of mass is now, [x y z]."
+  [^PhysicsRigidBody rb]
+  (triple (.getPhysicsLocation rb (Vector3f.))))
+
+(defn linear-velocity
+  "`rb`'s velocity now, [x y z]."
+  [^PhysicsRigidBody rb]
+  (triple (.getLinearVelocity rb (Vector3f.))))
+
+(defn angular-velocity
+  "`rb`'s angular velocity now, [x y z], jME's axes."
+  [^PhysicsRigidBody rb]
+  (triple (.getAngularVelocity rb (Vector3f.))))
+
+(defn inverse-mass
+  "1/m of the engine body `rb`, 0 for a static one."
+  ^double [^PhysicsRigidBody rb]
+  (let [m (.getMass rb)]
+    (if (pos? m) (/ 1.0 m) 0.0)))
+
+(defn inverse-inertia
+  "The inverse principal moments of `rb`, in its own frame, [x y z]."
+  [^PhysicsRigidBody rb]
+  (triple (.getInverseInertiaLocal rb (Vector3f.))))
+
+(defn apply-torques!
+  "Torque `t` ([x y z], world) on the engine body `rb-b` and -t on `rb-a`,
+  for the next step; both woken."
+  [^PhysicsRigidBody rb-a ^PhysicsRigidBody rb-b [x y z]]
+  (let [t (Vector3f. (float x) (float y) (float z))]
+    (when (pos? (.getMass rb-b))
+      (.applyTorque rb-b t)
+      (.activate rb-b))
+    (.negateLocal t)
+    (when (pos? (.getMass rb-a))
+      (.applyTorque rb-a t)
+      (.activate rb-a))))
+
+(defn set-inertia!
+  "Give `body` mass `mass` and the principal moments [ix iy iz]."
+  [^PhysicsRigidBody body mass [ix iy iz]]
+  (.setMass body (float mass))
+  (.setInverseInertiaLocal body (Vector3f. (float (/ 1.0 (double ix))) (float (/ 1.0 (double iy)))
+                                           (float (/ 1.0 (double iz))))))
+
+(defn clear-inertia!
+  "Make `body` unable to turn: inverse inertia 0."
+  [^PhysicsRigidBody body]
+  (.setInverseInertiaLocal body (Vector3f.)))
+
+(defn set-sleep!
+  "`:start-asleep` (it sleeps until something wakes it) or `:never`
+  (it never sleeps) for `body`. Minie cannot put a body to sleep at the
+  start; it sleeps as soon as it is still, which is as near as it gets."
+  [^PhysicsRigidBody body how]
+  (case how
+    :start-asleep (.setEnableSleep body true)
+    :never (.setEnableSleep body false)))
+
+(defn hull-points
+  "The points of `shape`'s hull (or of its first child's, for a compound
+  shape), [[x y z] ...], or nil when it is no hull."
+  [^CollisionShape shape]
+  (let [s (if (instance? CompoundCollisionShape shape)
+            (.getShape ^ChildCollisionShape (first (.listChildren ^CompoundCollisionShape shape)))
+            shape)]
+    (when (instance? HullCollisionShape s)
+      (mapv vec (partition 3 (map double (.copyHullVertices ^HullCollisionShape s)))))))
+
+(defn hull-volume
+  "The volume of the convex hull of `points` ([[x y z] ...])."
+  ^double [points]
+  (if (< (count points) 4)
+    0.0
+    (let [s (HullCollisionShape. ^floats (float-array (mapcat identity points)))]
+      (.setMargin s (float 0))
+      (double (.scaledVolume s)))))
+
+(defn hull-margin
+  "The collision margin cortex gives hull shapes: 0, as jme3-jbullet
+  does (native Bullet's default is 0.04)."
+  ^double []
+  0.0)
+
+(defn hinge-limits
+  "The [low high] to give a jME HingeJoint (made from two axes) so that
+  the designer's limits [lo hi] (radians, right-hand rule about the
+  designer's axis, second segment relative to the first) hold: native
+  Bullet's angle is minus the designer's, exactly."
+  [[lo hi]]
+  [(- (double hi)) (- (double lo))])
+
+(defn frame-hinge-limit
+  "The limit to give a FrameHingeJoint so that it stops at `angle`: the
+  angle itself."
+  [angle]
+  (float angle))
+
+(defn collide-linked!
+  "Whether the two bodies `joint` links collide with each other."
+  [^Constraint joint collide?]
+  (.setCollisionBetweenLinkedBodies joint (boolean collide?))
+  joint)
+
+(defn pivots
+  "[pivot-a pivot-b] of `joint`: its point in each body's frame."
+  [^Constraint joint]
+  [(.getPivotA joint (Vector3f.)) (.getPivotB joint (Vector3f.))])
+
+(defn joint-frames
+  "The frames a joint is read in, when the engine keeps them: for a
+  hinge given whole frames (a FrameHingeJoint), {:frame-a q :frame-b q
+  :axis [0 0 1]}, its frame in each body, the axis its Z; nil for any
+  other joint."
+  [^PhysicsJoint joint]
+  (when (instance? cortex.FrameHingeJoint joint)
+    (let [^cortex.FrameHingeJoint j joint
+          q (fn [m] (let [q (doto (Quaternion.) (.fromRotationMatrix ^com.jme3.math.Matrix3f m))]
+                      [(double (.getX q)) (double (.getY q)) (double (.getZ q)) (double (.getW q))]))]
+      {:frame-a (q (.getRotA j)) :frame-b (q (.getRotB j)) :axis [0.0 0.0 1.0]})))
+
+(defn configure-space!
+  "Set `space` up as cortex simulates: split impulse off, as in jBullet."
+  ^PhysicsSpace [^PhysicsSpace space]
+  (.setSplitImpulseEnabled ^SolverInfo (.getSolverInfo space) false)
+  space)
+
+(defn reduce-contacts
+  "Fold `f` over the contact manifolds of `space`'s last step: (f acc o0
+  o1 touching? impulse), o0 and o1 the two collision objects (as
+  `collision-object` names bodies), touching? when a point lies within
+  `touch-distance` or carried an impulse, impulse the summed normal
+  impulse of the points in contact. `wanted?` (of a collision object)
+  picks the manifolds worth reading; the others are skipped."
+  [^PhysicsSpace space touch-distance wanted? f init]
+  (let [d (double touch-distance)]
+    (reduce (fn [acc ^long m]
+              (let [b0 (PhysicsCollisionObject/findInstance (PersistentManifolds/getBodyAId m))
+                    b1 (PhysicsCollisionObject/findInstance (PersistentManifolds/getBodyBId m))]
+                (if (or (wanted? b0) (wanted? b1))
+                  (let [n (PersistentManifolds/countPoints m)
+                        [touching? impulse]
+                        (loop [i 0 touching? false impulse 0.0]
+                          (if (< i n)
+                            (let [p (PersistentManifolds/getPointId m i)
+                                  dist (double (ManifoldPoints/getDistance1 p))
+                                  imp (if (<= dist 0.0) (double (ManifoldPoints/getAppliedImpulse p)) 0.0)]
+                              (recur (inc i) (or touching? (<= dist d) (pos? imp)) (+ impulse imp)))
+                            [touching? impulse]))]
+                    (f acc b0 b1 touching? impulse))
+                  acc)))
+            init
+            (.listManifoldIds space))))
