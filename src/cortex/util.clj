@@ -9,6 +9,8 @@
   `blender-to-jme`, `jme-to-blender`, `blender-axes`, `vec3`,
   `finite?`, `light-up-everything`, `display-dilated-time`,
   `println-repl`."
+  ;; the physics engine (org/engine.org): native Bullet loads its library here
+  (:require [cortex.engine])
   (:import (com.jme3.app SimpleApplication)
            (com.jme3.app.state AbstractAppState)
            (com.jme3.asset AssetManager DesktopAssetManager)

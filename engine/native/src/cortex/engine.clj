@@ -13,13 +13,28 @@
            (com.jme3.bullet.joints PhysicsJoint Constraint)
            (com.jme3.bullet.objects PhysicsRigidBody)
            (com.jme3.math Matrix3f Quaternion Vector3f)
-           (com.jme3.scene Mesh)))
+           (com.jme3.scene Mesh)
+           (com.jme3.system NativeLibraryLoader Platform)))
 
 (set! *warn-on-reflection* true)
 
 (def name
   "Which engine this is: :jbullet or :native."
   :native)
+
+(defonce ^{:private true
+           :doc "Minie's native library, loaded once, when this namespace is:
+  jME 3.2.4's loader knows the library's name but not where Minie keeps
+  it, so each platform's file is named first."}
+  native-library
+  (do (doseq [[platform path] [[Platform/Linux64 "native/linux/x86_64/libbulletjme.so"]
+                               [Platform/Linux32 "native/linux/x86/libbulletjme.so"]
+                               [Platform/Windows64 "native/windows/x86_64/bulletjme.dll"]
+                               [Platform/Windows32 "native/windows/x86/bulletjme.dll"]
+                               [Platform/MacOSX64 "native/osx/x86_64/libbulletjme.dylib"]]]
+        (NativeLibraryLoader/registerNativeLibrary "bulletjme" platform path))
+      (NativeLibraryLoader/loadNativeLibrary "bulletjme" true)
+      :loaded))
 
 (defn rigid-body
   "The engine's own object for the jME body `body`: here `body` itself."
@@ -130,14 +145,16 @@
   (if (< (count points) 4)
     0.0
     (let [s (HullCollisionShape. ^floats (float-array (mapcat identity points)))]
-      (.setMargin s (float 0))
+      ;; Minie refuses a margin of 0; this one adds nothing measurable
+      (.setMargin s (float 1e-9))
       (double (.scaledVolume s)))))
 
 (defn hull-margin
-  "The collision margin cortex gives hull shapes: 0, as jme3-jbullet
-  does (native Bullet's default is 0.04)."
+  "The collision margin cortex gives hull shapes: 0.001, as near
+  jme3-jbullet's 0 as Minie allows (it refuses 0; native Bullet's
+  default is 0.04)."
   ^double []
-  0.0)
+  0.001)
 
 (defn hinge-limits
   "The [low high] to give a jME HingeJoint (made from two axes) so that
