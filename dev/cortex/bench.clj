@@ -223,7 +223,7 @@
         space (bare-space)
         stamps (object-array frames)
         step (float (/ 1 fps))]
-    (.addAll space (util/nodify [creature (floor-under creature)]))
+    (cortex.engine/add-all! space (util/nodify [creature (floor-under creature)]))
     (.setGravity space earth)
     (doseq [^PhysicsRigidBody b (.getRigidBodyList space)]
       (.setGravity b earth)
@@ -272,7 +272,7 @@
         (dotimes [i frames] (aset stamps i (stamp)) (sim/step! s))
         (sim/destroy! s))
       (let [space (bare-space)]
-        (.addAll space (util/nodify [creature (sim/floor height)]))
+        (cortex.engine/add-all! space (util/nodify [creature (sim/floor height)]))
         (.setGravity space earth)
         (doseq [^PhysicsRigidBody b (.getRigidBodyList space)]
           (.setGravity b earth)

@@ -120,7 +120,7 @@
          segs (physical-segments creature)
          sensors (p/sensors creature)
          g (util/vec3 gravity)]
-     (.addAll space root)
+     (engine/add-all! space root)
      (.setGravity space g)
      (doseq [^PhysicsRigidBody b (.getRigidBodyList space)]
        (.setGravity b g)

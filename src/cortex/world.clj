@@ -220,7 +220,7 @@
               (some-> (.getPhysicsSpace physics-state) engine/configure-space!)
               (swap! state assoc ::physics physics-state)
               (.attachChild (.getRootNode this) root-node)
-              (.addAll (.getPhysicsSpace physics-state) (.getRootNode this))
+              (engine/add-all! (.getPhysicsSpace physics-state) (.getRootNode this))
               (bind-keys! this key-map)
               (setup-fn this)))
           (update []
@@ -468,7 +468,7 @@
   ([world element] (add-element! world element (.getRootNode ^SimpleApplication world)))
   ([world ^Spatial element ^Node node]
    (.attachChild node element)
-   (.addAll (physics-space world) element)
+   (engine/add-all! (physics-space world) element)
    element))
 
 (defn fire-cannon-ball

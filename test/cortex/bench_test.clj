@@ -49,7 +49,7 @@
                    [(.getControl g RigidBodyControl) (.getName g)])
         name-of (into {} controls)]
     (set (for [[^RigidBodyControl c _] controls
-               j (.getJoints c)]
+               j (cortex.engine/joints c)]
            #{(name-of (.getBodyA j)) (name-of (.getBodyB j))}))))
 
 (deftest body!-joins-what-the-generator-placed

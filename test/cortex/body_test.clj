@@ -252,7 +252,7 @@
 (defn- floor [] (util/box 20 1 20 :position (Vector3f. 0 -1 0) :mass 0 :name "floor"))
 
 (defn- all-joints [creature]
-  (distinct (mapcat #(.getJoints ^RigidBodyControl (.getControl ^Geometry % RigidBodyControl))
+  (distinct (mapcat #(engine/joints (.getControl ^Geometry % RigidBodyControl))
                     (body/segments creature))))
 
 (defn- simulate

@@ -197,6 +197,11 @@
   [^PhysicsJoint joint]
   [(.getPivotA joint) (.getPivotB joint)])
 
+(defn joints
+  "The joints attached to the jME body `body`, a seq."
+  [^PhysicsRigidBody body]
+  (seq (.getJoints body)))
+
 (defn- basis-rotation
   "The rotation of a jBullet Transform's basis, [x y z w]. A hinge's
   second frame is left-handed (its third column is minus the axis, as in
@@ -229,6 +234,11 @@
   "Set `space` up as cortex simulates: here jBullet's defaults, already."
   ^PhysicsSpace [^PhysicsSpace space]
   space)
+
+(defn add-all!
+  "Add the bodies under `spatial`, and their joints, to `space`."
+  [^PhysicsSpace space ^com.jme3.scene.Spatial spatial]
+  (.addAll space spatial))
 
 (defn- manifold-contact
   "[touching? summed-normal-impulse] of the points of manifold `m`."

@@ -139,15 +139,48 @@
     (when (instance? HullCollisionShape s)
       (mapv vec (partition 3 (map double (.copyHullVertices ^HullCollisionShape s)))))))
 
+(defn- v- [[ax ay az] [bx by bz]] [(- ax bx) (- ay by) (- az bz)])
+(defn- cross [[ax ay az] [bx by bz]]
+  [(- (* ay bz) (* az by)) (- (* az bx) (* ax bz)) (- (* ax by) (* ay bx))])
+(defn- dot ^double [[ax ay az] [bx by bz]] (+ (* ax bx) (* ay by) (* az bz)))
+
+(defn- polygon-area
+  "The area of the convex polygon through `ps`, which lie on a plane of
+  normal `n`."
+  ^double [ps n]
+  (let [c (mapv #(/ (double %) (count ps)) (reduce #(mapv + %1 %2) ps))
+        u (v- (first ps) c)
+        w (cross n u)
+        sorted (sort-by #(let [d (v- % c)] (Math/atan2 (dot d w) (dot d u))) ps)
+        len (Math/sqrt (dot n n))]
+    (/ (reduce + (map (fn [a b] (/ (dot (cross (v- a c) (v- b c)) n) len))
+                      sorted (concat (rest sorted) [(first sorted)])))
+       2.0)))
+
 (defn hull-volume
   "The volume of the convex hull of `points` ([[x y z] ...])."
   ^double [points]
-  (if (< (count points) 4)
-    0.0
-    (let [s (HullCollisionShape. ^floats (float-array (mapcat identity points)))]
-      ;; Minie refuses a margin of 0; this one adds nothing measurable
-      (.setMargin s (float 1e-9))
-      (double (.scaledVolume s)))))
+  (let [ps (vec (distinct (map #(mapv double %) points)))
+        n (count ps)]
+    (if (< n 4)
+      0.0
+      (let [c (mapv #(/ (double %) n) (reduce #(mapv + %1 %2) ps))
+            size (reduce max 1e-12 (map #(Math/sqrt (dot (v- % c) (v- % c))) ps))
+            eps (* 1e-6 size)
+            faces (distinct
+                   (for [i (range n) j (range (inc i) n) k (range (inc j) n)
+                         :let [a (ps i) nrm (cross (v- (ps j) a) (v- (ps k) a))
+                               len (Math/sqrt (dot nrm nrm))]
+                         :when (> len (* eps size))
+                         :let [sides (mapv #(/ (dot nrm (v- % a)) len) ps)]
+                         :when (or (every? #(<= (double %) eps) sides)
+                                   (every? #(>= (double %) (- eps)) sides))]
+                     [(set (filter #(< (Math/abs (double (sides %))) eps) (range n))) nrm a]))
+            faces (vals (into {} (map (fn [[on nrm a]] [on [on nrm a]]) faces)))]
+        (reduce + (for [[on nrm a] faces
+                        :let [len (Math/sqrt (dot nrm nrm))
+                              height (Math/abs (/ (dot nrm (v- a c)) len))]]
+                    (/ (* (Math/abs (polygon-area (mapv ps on) nrm)) height) 3.0)))))))
 
 (defn hull-margin
   "The collision margin cortex gives hull shapes: 0.001, as near
@@ -181,6 +214,11 @@
   [^Constraint joint]
   [(.getPivotA joint (Vector3f.)) (.getPivotB joint (Vector3f.))])
 
+(defn joints
+  "The joints attached to the jME body `body`, a seq."
+  [^PhysicsRigidBody body]
+  (seq (.listJoints body)))
+
 (defn joint-frames
   "The frames a joint is read in, when the engine keeps them: for a
   hinge given whole frames (a FrameHingeJoint), {:frame-a q :frame-b q
@@ -198,6 +236,19 @@
   ^PhysicsSpace [^PhysicsSpace space]
   (.setSplitImpulseEnabled ^SolverInfo (.getSolverInfo space) false)
   space)
+
+(defn add-all!
+  "Add the bodies under `spatial`, and their joints, to `space`: Minie's
+  addAll adds only the bodies (jme3-jbullet's adds their joints too)."
+  [^PhysicsSpace space ^com.jme3.scene.Spatial spatial]
+  (.addAll space spatial)
+  (let [present (java.util.IdentityHashMap.)]
+    (doseq [j (.getJointList space)] (.put present j true))
+    (doseq [^PhysicsRigidBody b (.getRigidBodyList space)
+            ^PhysicsJoint j (.listJoints b)
+            :when (not (.containsKey present j))]
+      (.put present j true)
+      (.addJoint space j))))
 
 (defn reduce-contacts
   "Fold `f` over the contact manifolds of `space`'s last step: (f acc o0
