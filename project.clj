@@ -23,6 +23,9 @@
                  ;; lein run's options
                  [org.clojure/tools.cli "1.1.230"]]
   :source-paths ["src"]
+  ;; one target folder per profile set: classes compiled ahead of time for
+  ;; an uberjar (lein with-profile +spark uberjar) never shadow the sources
+  :target-path "target/%s/"
   :java-source-paths ["java"]
   :resource-paths ["assets"]
   :javac-options ["--release" "11" "-Xlint:-options"]

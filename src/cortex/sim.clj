@@ -128,7 +128,10 @@
      {:space space :creature creature :root root :observe (set observe)
       :sensors sensors
       :muscles (into {} (for [s sensors] [(:name s) (muscle/muscle s)]))
-      :segments (mapv (fn [[n _ rb]] [n rb]) segs)
+      :segments (mapv (fn [[n ^Geometry g rb]]
+                        (let [plan (.getUserData g "cortex.body/mass")]
+                          [n rb (when (:rotation plan) plan)]))
+                      segs)
       :controls (vec (for [^Geometry geom (body/segments root)
                            :let [c (.getControl geom RigidBodyControl)]
                            :when c]
@@ -155,14 +158,34 @@
   (/ (double (steps sim)) 60.0))
 
 (defn- segment-state
-  [^RigidBody rb]
+  "Segment `rb`'s state in the segment's own frame: a body whose centre
+  of mass is off the segment's origin, or whose principal axes are
+  turned from the segment's (see the body chapter's mass properties),
+  carries `offset`, {:centre [x y z] :rotation Quaternion}; its position
+  and rotation are taken back to the segment's origin and axes, and the
+  velocity is the origin's."
+  [^RigidBody rb offset]
   (let [v (javax.vecmath.Vector3f.)
         q (.getOrientation rb (Quat4f.))
-        triple (fn [^javax.vecmath.Vector3f v] [(.x v) (.y v) (.z v)])]
-    {:position (triple (.getCenterOfMassPosition rb v))
-     :rotation [(.x q) (.y q) (.z q) (.w q)]
-     :velocity (triple (.getLinearVelocity rb v))
-     :angular-velocity (triple (.getAngularVelocity rb v))}))
+        triple (fn [^javax.vecmath.Vector3f v] [(.x v) (.y v) (.z v)])
+        p (triple (.getCenterOfMassPosition rb v))
+        lin (triple (.getLinearVelocity rb v))
+        w (triple (.getAngularVelocity rb v))]
+    (if-let [{:keys [centre ^com.jme3.math.Quaternion rotation]} offset]
+      (let [body-rot (com.jme3.math.Quaternion. (.x q) (.y q) (.z q) (.w q))
+            rot (.mult body-rot (.inverse rotation))
+            ;; from the centre of mass back to the origin, in the world
+            back (.negate (.mult rot (util/vec3 centre)))
+            [bx by bz :as b] [(.x back) (.y back) (.z back)]
+            [wx wy wz] w]
+        {:position (mapv + p b)
+         :rotation [(.getX rot) (.getY rot) (.getZ rot) (.getW rot)]
+         :velocity (mapv + lin [(- (* wy bz) (* wz by)) (- (* wz bx) (* wx bz)) (- (* wx by) (* wy bx))])
+         :angular-velocity w})
+      {:position p
+       :rotation [(.x q) (.y q) (.z q) (.w q)]
+       :velocity lin
+       :angular-velocity w})))
 
 (declare sync!)
 
@@ -173,13 +196,15 @@
   with eyes, :eyes (see cortex.sight/see!)."
   ([sim] (observe sim (:observe sim)))
   ([{:keys [sensors segments space segment-names object-names sight] :as sim} parts]
+   (if (empty? parts)
+     {:time (sim-time sim)}
    (cond-> {:time (sim-time sim)}
      (and sight (contains? parts :eyes))
      (assoc :eyes (do (sync! sim) ((requiring-resolve 'cortex.sight/see!) sight)))
      (contains? parts :joints) (assoc :joints (p/read-joints sensors))
      (contains? parts :segments)
-     (assoc :segments (into {} (for [[n rb] segments] [n (segment-state rb)])))
-     (contains? parts :touch) (assoc :touch (touch/contacts space segment-names object-names)))))
+     (assoc :segments (into {} (for [[n rb offset] segments] [n (segment-state rb offset)])))
+     (contains? parts :touch) (assoc :touch (touch/contacts space segment-names object-names))))))
 
 (defn step!
   "Apply `actions` (see cortex.muscle; nil or {} for none) for one step,
