@@ -36,6 +36,9 @@
                           :exclusions [jbullet/jbullet stack-alloc/stack-alloc java3d/vecmath]]
                          [com.github.stephengold/jbullet "1.0.3"]])
   :source-paths ["src" "engine/jbullet/src"]
+  ;; one target folder per profile set: classes compiled ahead of time for
+  ;; an uberjar (lein with-profile +spark uberjar) never shadow the sources
+  :target-path "target/%s/"
   :java-source-paths ["java" "engine/jbullet/java"]
   :resource-paths ["assets"]
   :javac-options ["--release" "11" "-Xlint:-options"]

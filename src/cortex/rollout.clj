@@ -79,6 +79,11 @@
   (when-not (map? spec)
     (throw (ex-info (str (if index (str "spec " index) "spec") " must be a map, not " (pr-str spec))
                     {:index index :spec spec})))
+  (when (contains? spec :eyes)
+    (fail! index spec :eyes (str "rollouts run without eyes (one OpenGL context per"
+                                 " simulation would be needed on every worker); for eyes,"
+                                 " make each simulation with cortex.sim/simulation and"
+                                 " {:eyes true} on its own thread (see org/vision.org)")))
   (doseq [k (keys spec) :when (not (spec-keys k))]
     (fail! index spec k (str "unknown key; a spec takes " (str/join ", " (sort spec-keys)))))
   (let [{:keys [creature controller params seconds seed start floor observe torso

@@ -8,8 +8,8 @@
   Loaded only when eyes are asked for.
 
   Entry points: `open!` (eyes for a simulation, used by cortex.sim),
-  `see!`, `close!`, `eyes-state` (eyes in a world), `eye-images`,
-  `eye-image`, `record-with-eyes!`."
+  `see!`, `close!`, `choose`, `eyes-state` (eyes in a world),
+  `eye-image`, `depth-image`, `with-eyes`, `record-with-eyes!`."
   (:require [cortex.render :as render]
             [cortex.util :as util]
             [cortex.vision :as vision])

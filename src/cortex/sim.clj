@@ -128,7 +128,10 @@
      {:space space :creature creature :root root :observe (set observe)
       :sensors sensors
       :muscles (into {} (for [s sensors] [(:name s) (muscle/muscle s)]))
-      :segments (mapv (fn [[n _ rb]] [n rb]) segs)
+      :segments (mapv (fn [[n ^Geometry g rb]]
+                        (let [plan (.getUserData g "cortex.body/mass")]
+                          [n rb (when (:rotation plan) plan)]))
+                      segs)
       :controls (vec (for [^Geometry geom (body/segments root)
                            :let [c (.getControl geom RigidBodyControl)]
                            :when c]
@@ -155,11 +158,29 @@
   (/ (double (steps sim)) 60.0))
 
 (defn- segment-state
-  [rb]
-  {:position (engine/position rb)
-   :rotation (engine/orientation rb)
-   :velocity (engine/linear-velocity rb)
-   :angular-velocity (engine/angular-velocity rb)})
+  "Segment `rb`'s state in the segment's own frame: a body whose centre
+  of mass is off the segment's origin, or whose principal axes are
+  turned from the segment's (see the body chapter's mass properties),
+  carries `offset`, {:centre [x y z] :rotation Quaternion}; its position
+  and rotation are taken back to the segment's origin and axes, and the
+  velocity is the origin's."
+  [rb offset]
+  (let [p (engine/position rb)
+        [qx qy qz qw :as q] (engine/orientation rb)
+        lin (engine/linear-velocity rb)
+        w (engine/angular-velocity rb)]
+    (if-let [{:keys [centre ^com.jme3.math.Quaternion rotation]} offset]
+      (let [body-rot (com.jme3.math.Quaternion. (float qx) (float qy) (float qz) (float qw))
+            rot (.mult body-rot (.inverse rotation))
+            ;; from the centre of mass back to the origin, in the world
+            back (.negate (.mult rot (util/vec3 centre)))
+            [bx by bz :as b] [(.x back) (.y back) (.z back)]
+            [wx wy wz] w]
+        {:position (mapv + p b)
+         :rotation [(.getX rot) (.getY rot) (.getZ rot) (.getW rot)]
+         :velocity (mapv + lin [(- (* wy bz) (* wz by)) (- (* wz bx) (* wx bz)) (- (* wx by) (* wy bx))])
+         :angular-velocity w})
+      {:position p :rotation q :velocity lin :angular-velocity w})))
 
 (declare sync!)
 
@@ -170,13 +191,15 @@
   with eyes, :eyes (see cortex.sight/see!)."
   ([sim] (observe sim (:observe sim)))
   ([{:keys [sensors segments space segment-names object-names sight] :as sim} parts]
+   (if (empty? parts)
+     {:time (sim-time sim)}
    (cond-> {:time (sim-time sim)}
      (and sight (contains? parts :eyes))
      (assoc :eyes (do (sync! sim) ((requiring-resolve 'cortex.sight/see!) sight)))
      (contains? parts :joints) (assoc :joints (p/read-joints sensors))
      (contains? parts :segments)
-     (assoc :segments (into {} (for [[n rb] segments] [n (segment-state rb)])))
-     (contains? parts :touch) (assoc :touch (touch/contacts space segment-names object-names)))))
+     (assoc :segments (into {} (for [[n rb offset] segments] [n (segment-state rb offset)])))
+     (contains? parts :touch) (assoc :touch (touch/contacts space segment-names object-names))))))
 
 (defn step!
   "Apply `actions` (see cortex.muscle; nil or {} for none) for one step,

@@ -98,7 +98,8 @@
              [(assoc worm :params {:frequency 0}) :params #":frequency must be a positive number"]
              [(assoc worm :params {:rise 1.5}) :params #":rise must be a fraction"]
              [(assoc worm :trajectory 0) :trajectory #"positive whole"]
-             [(assoc worm :sceonds 3) :sceonds #"unknown key"]]]
+             [(assoc worm :sceonds 3) :sceonds #"unknown key"]
+             [(assoc worm :eyes true) :eyes #"rollouts run without eyes.*org/vision\.org"]]]
       (let [[message data] (failure [good bad])]
         (is (= {:index 1 :field field} data) (pr-str bad))
         (is (re-find pattern (str message)) message)

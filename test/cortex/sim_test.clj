@@ -172,3 +172,26 @@
         x0 (first (get-in (sim/observe w) [:segments "worm-1" :position]))]
     (dotimes [_ 600] (sim/step! w (gait (sim/sim-time w))))
     (is (< (- (first (get-in (sim/observe w) [:segments "worm-1" :position])) x0) -3.0))))
+
+(deftest off-centre-segments-are-observed-at-their-origin
+  (let [mesh (com.jme3.scene.shape.Box. (Vector3f. 0 -0.5 -0.25) (Vector3f. 2 0.5 0.25))
+        g (Geometry. "lopsided" mesh)
+        c (util/nodify "c" [(doto (Node. "lopsided") (.attachChild g) (.setLocalTranslation 1 2 3)
+                              (.setLocalRotation (doto (com.jme3.math.Quaternion.)
+                                                   (.fromAngleAxis 0.3 Vector3f/UNIT_Z))))])
+        s (sim/simulation (body/body! c) {:gravity [0 0 0]})
+        ^RigidBodyControl control (.getControl g RigidBodyControl)]
+    (.setAngularVelocity control (Vector3f. 0 2 0))
+    (let [obs (vec (repeatedly 31 #(sim/step! s)))
+          at (fn [i] (get-in obs [i :segments "lopsided"]))
+          {:keys [position velocity]} (at 29)
+          [p _] (body/segment-pose g)
+          ;; the origin's velocity, from its positions a step either side
+          moved (mapv #(/ (- %1 %2) (/ 2 60.0)) (:position (at 30)) (:position (at 28)))]
+      (is (< (.distance (util/vec3 (:position (at 30))) p) 1e-5))
+      (is (> (.distance (util/vec3 position) (.getPhysicsLocation control)) 0.9)
+          "the body itself is at the mesh's centre, a unit away")
+      (testing "the origin swings round the centre, at the speed its positions say"
+        (is (> (.length (util/vec3 velocity)) 1.0))
+        (is (< (.distance (util/vec3 velocity) (util/vec3 moved))
+               (* 0.02 (.length (util/vec3 moved)))))))))

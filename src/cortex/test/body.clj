@@ -3,7 +3,7 @@
   "The worlds that show a body being built, step by step: the hand as a
   hologram, the hand solid but in pieces, the hand jointed, and the worm
   that later chapters give senses to. Each is a function returning an
-  unstarted world: (.start (test-worm)) opens a window,
+  unstarted world: (render/start-window! (test-worm)) opens a window,
   (world/run-world! (test-worm) 300) runs it headless.
 
   Entry points: `test-hand-1`, `test-hand-2`, `test-hand-3`,
