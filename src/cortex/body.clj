@@ -72,18 +72,14 @@
           (for [^Vector3f d (sphere-directions limit)]
             (apply max-key #(.dot d ^Vector3f %) points))))))
 
-(def ^:private hull-lock
-  "Held while jBullet builds a hull: see above."
-  (Object.))
-
 (defn hull-from-points
   "A convex hull collision shape around `points` (Vector3fs), made under
   the lock that keeps jBullet's hull building correct on many threads."
   ^HullCollisionShape [points]
   (let [coords (float-array (mapcat (fn [^Vector3f p] [(.x p) (.y p) (.z p)]) points))]
-    (locking hull-lock
-      ;; no collision margin, on either engine (see org/engine.org)
-      (doto (HullCollisionShape. coords)
+    (util/locked-shape
+     ;; no collision margin, on either engine (see org/engine.org)
+     #(doto (HullCollisionShape. coords)
         (.setMargin (float (engine/hull-margin)))))))
 
 (defn- hull-shape

@@ -100,7 +100,7 @@
         geom (Geometry. "floor" (Box. (float half) 0.5 (float half)))]
     (doto geom
       (.setLocalTranslation (float (/ (+ lx hx) 2)) (float (- top 0.5)) (float (/ (+ lz hz) 2)))
-      (.addControl (RigidBodyControl. (BoxCollisionShape. (Vector3f. half 0.5 half)) 0))
+      (.addControl (RigidBodyControl. ^BoxCollisionShape (util/locked-shape #(BoxCollisionShape. (Vector3f. half 0.5 half))) 0))
       (.setShadowMode RenderQueue$ShadowMode/Receive))))
 
 (defn frame!

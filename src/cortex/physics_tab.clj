@@ -162,7 +162,7 @@
         points (mapcat #(body/mesh-points (.getMesh ^Geometry %) (.getWorldScale ^Geometry %)) geoms)]
     (if (empty? points)
       ;; Blender gives a mesh without vertices a box of size zero
-      [(BoxCollisionShape. (Vector3f. (float (tiny 0)) (float (tiny 0)) (float (tiny 0)))) [] :empty]
+      [(util/locked-shape #(BoxCollisionShape. (Vector3f. (float (tiny 0)) (float (tiny 0)) (float (tiny 0))))) [] :empty]
       (sized-shape node rb static? geoms points))))
 
 (defn- sized-shape
@@ -177,7 +177,7 @@
         use-margin? (or (:use-margin rb) (#{"CONVEX_HULL" "MESH" "CONE"} (:shape rb)))
         [shape warnings]
         (case (:shape settings)
-          "BOX" [(BoxCollisionShape. (util/vec3 (:half-extents settings)))]
+          "BOX" [(util/locked-shape #(BoxCollisionShape. (util/vec3 (:half-extents settings))))]
           "SPHERE" [(SphereCollisionShape. (float (:radius settings)))]
           "CAPSULE" [(CapsuleCollisionShape. (float (tiny (:radius settings)))
                                              (float (:height settings)) (int up-axis))]

@@ -154,6 +154,20 @@
                           (.setFriction (float friction)))))
     geom))
 
+(def ^:private shape-lock
+  "Held while jBullet makes a box or hull shape (see `locked-shape`)."
+  (Object.))
+
+(defn locked-shape
+  "The collision shape `(make)` returns, made while no other thread of
+  cortex makes one. jBullet's boxes and hulls (its PolyhedralConvexShapes)
+  compute their bounds in a static array that every thread shares, on
+  creation and whenever they are scaled, so two made at the same moment
+  on two threads can get each other's bounds; every box and hull cortex
+  makes is made through here."
+  [make]
+  (locking shape-lock (make)))
+
 (defn box
   "A box with half-extents `x`, `y`, `z`. Options: :name, :color,
   :material (a .j3md with a Color parameter), :position, :rotation,
@@ -162,7 +176,7 @@
   ([] (box 0.5 0.5 0.5))
   ([x y z & {:as options}]
    (shape (Box. (float x) (float y) (float z))
-          (BoxCollisionShape. (Vector3f. x y z))
+          (locked-shape #(BoxCollisionShape. (Vector3f. x y z)))
           (merge {:name "box"} options))))
 
 (defn sphere
