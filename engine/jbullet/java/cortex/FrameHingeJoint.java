@@ -5,7 +5,6 @@ import com.bulletphysics.dynamics.constraintsolver.HingeConstraint;
 import com.bulletphysics.linearmath.Transform;
 import com.jme3.bullet.joints.PhysicsJoint;
 import com.jme3.bullet.objects.PhysicsRigidBody;
-import com.jme3.bullet.util.Converter;
 import com.jme3.math.Matrix3f;
 import com.jme3.math.Vector3f;
 
@@ -27,11 +26,8 @@ public class FrameHingeJoint extends PhysicsJoint {
         super(nodeA, nodeB, pivotA, pivotB);
         this.rotA = rotA.clone();
         this.rotB = rotB.clone();
-        Transform frameA = new Transform(Converter.convert(rotA));
-        frameA.origin.set(Converter.convert(pivotA));
-        Transform frameB = new Transform(Converter.convert(rotB));
-        frameB.origin.set(Converter.convert(pivotB));
-        constraint = new Metered(nodeA.getObjectId(), nodeB.getObjectId(), frameA, frameB);
+        constraint = new Metered(nodeA.getObjectId(), nodeB.getObjectId(),
+                                 ImpulseMeter.frame(rotA, pivotA), ImpulseMeter.frame(rotB, pivotB));
     }
 
     /** jBullet's hinge, with an ImpulseMeter for its applied impulse. */

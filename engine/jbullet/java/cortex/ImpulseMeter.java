@@ -28,6 +28,17 @@ public final class ImpulseMeter {
     private final Vector3f tmp = new Vector3f();
     private final Transform t = new Transform();
 
+    /**
+     * A jME joint frame (rotation and pivot in a body's frame) as the
+     * jBullet Transform its constraints take: the one conversion every
+     * metered joint needs.
+     */
+    public static Transform frame(com.jme3.math.Matrix3f rotation, com.jme3.math.Vector3f pivot) {
+        Transform t = new Transform(com.jme3.bullet.util.Converter.convert(rotation));
+        com.jme3.bullet.util.Converter.convert(pivot, t.origin);
+        return t;
+    }
+
     public ImpulseMeter(RigidBody a, RigidBody b, Matrix3f basisInA) {
         this.a = a;
         this.b = b;

@@ -53,11 +53,8 @@ public class MeteredSixDofJoint extends SixDofJoint {
                               Vector3f pivotA, Vector3f pivotB,
                               Matrix3f rotA, Matrix3f rotB, boolean useLinearReferenceFrameA) {
         super(nodeA, nodeB, pivotA, pivotB, rotA, rotB, useLinearReferenceFrameA);
-        Transform transA = new Transform(Converter.convert(rotA));
-        Converter.convert(pivotA, transA.origin);
-        Transform transB = new Transform(Converter.convert(rotB));
-        Converter.convert(pivotB, transB.origin);
-        Metered c = new Metered(nodeA.getObjectId(), nodeB.getObjectId(), transA, transB,
+        Metered c = new Metered(nodeA.getObjectId(), nodeB.getObjectId(),
+                                ImpulseMeter.frame(rotA, pivotA), ImpulseMeter.frame(rotB, pivotB),
                                 useLinearReferenceFrameA);
         constraint = c;
         for (int i = 0; i < 3; i++) {

@@ -6,7 +6,6 @@ import com.bulletphysics.dynamics.constraintsolver.SliderConstraint;
 import com.bulletphysics.linearmath.Transform;
 import com.jme3.bullet.joints.SliderJoint;
 import com.jme3.bullet.objects.PhysicsRigidBody;
-import com.jme3.bullet.util.Converter;
 import com.jme3.math.Matrix3f;
 import com.jme3.math.Vector3f;
 
@@ -47,11 +46,8 @@ public class MeteredSliderJoint extends SliderJoint {
                               Vector3f pivotA, Vector3f pivotB,
                               Matrix3f rotA, Matrix3f rotB, boolean useLinearReferenceFrameA) {
         super(nodeA, nodeB, pivotA, pivotB, rotA, rotB, useLinearReferenceFrameA);
-        Transform transA = new Transform(Converter.convert(rotA));
-        Converter.convert(pivotA, transA.origin);
-        Transform transB = new Transform(Converter.convert(rotB));
-        Converter.convert(pivotB, transB.origin);
-        constraint = new Metered(nodeA.getObjectId(), nodeB.getObjectId(), transA, transB,
+        constraint = new Metered(nodeA.getObjectId(), nodeB.getObjectId(),
+                                 ImpulseMeter.frame(rotA, pivotA), ImpulseMeter.frame(rotB, pivotB),
                                  useLinearReferenceFrameA);
     }
 }
