@@ -267,14 +267,19 @@ def main():
     failures = []
     for path in args:
         failures += check_file(path)
+    finish(failures, "creature")
+
+
+
+def finish(failures, what):
+    """Print the failures and exit 1, or say that every `what` check passed."""
     print()
     if failures:
         print("FAILED:")
         for f in failures:
             print("  " + f)
         sys.exit(1)
-    print("all creature checks passed")
-
+    print("all %s checks passed" % what)
 
 if __name__ == "__main__":
     main()

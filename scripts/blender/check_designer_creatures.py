@@ -34,7 +34,7 @@ from mathutils import Vector
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import dump  # noqa: E402
-from check_creatures import (closed, euclid_to_mesh, read_joint, signed_volume,  # noqa: E402
+from check_creatures import (closed, euclid_to_mesh, finish, read_joint, signed_volume,  # noqa: E402
                              world_verts)
 
 TOL = 1e-5
@@ -366,13 +366,7 @@ def main():
             fail("%s: differs from quadruped.json by %s" % (kind, diff))
         print("%-16s %s" % (kind, info))
 
-    print()
-    if failures:
-        print("FAILED:")
-        for f in failures:
-            print("  " + f)
-        sys.exit(1)
-    print("all designer creature checks passed")
+    finish(failures, "designer creature")
 
 
 if __name__ == "__main__":

@@ -38,7 +38,7 @@ from mathutils.bvhtree import BVHTree
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import dump  # noqa: E402
-from check_creatures import closed, read_joint, signed_volume  # noqa: E402
+from check_creatures import closed, finish, read_joint, signed_volume  # noqa: E402
 from make_humanoid import (cube_distance, euclid_distance, inside_convex, r9,  # noqa: E402
                            size_of, tri_box_overlap, triangles, volume_properties)
 
@@ -314,13 +314,7 @@ def main():
               "largest joined mass ratio %.2f"
               % (heavy["masses"]["right_lower_arm"],
                  files["humanoid-heavy-hands.blend"]["max_joined_mass_ratio"]))
-    print()
-    if failures:
-        print("FAILED:")
-        for f in failures:
-            print("  " + f)
-        sys.exit(1)
-    print("all humanoid checks passed")
+    finish(failures, "humanoid")
 
 
 if __name__ == "__main__":
