@@ -213,17 +213,14 @@
   (PhysicsSpace. (Vector3f. -10000 -10000 -10000) (Vector3f. 10000 10000 10000)
                  PhysicsSpace$BroadphaseType/DBVT))
 
-(defn bare-run!
-  "Build a creature from `make`, put it and a floor into a bare Bullet
-  space with no world and no scene graph, and step the space `frames`
-  times by 1/fps s. Returns the :stamps of the steps and the bodies'
-  final :states."
-  [make frames]
-  (let [creature (doto ^Node (make) (body/body!))
-        space (bare-space)
-        stamps (object-array frames)
+(defn- step-bare!
+  "Put the bodies under `root` into a new bare space, under earth's
+  gravity as a world puts them, and step it `frames` times by 1/fps s,
+  writing a stamp before each step into `stamps`."
+  [root frames ^objects stamps]
+  (let [space (bare-space)
         step (float (/ 1 fps))]
-    (cortex.engine/add-all! space (util/nodify [creature (floor-under creature)]))
+    (cortex.engine/add-all! space root)
     (.setGravity space earth)
     (doseq [^PhysicsRigidBody b (.getRigidBodyList space)]
       (.setGravity b earth)
@@ -232,7 +229,17 @@
       (aset stamps i (stamp))
       (.update space step)
       (.distributeEvents space))
-    (.destroy space)
+    (.destroy space)))
+
+(defn bare-run!
+  "Build a creature from `make`, put it and a floor into a bare Bullet
+  space with no world and no scene graph, and step the space `frames`
+  times by 1/fps s. Returns the :stamps of the steps and the bodies'
+  final :states."
+  [make frames]
+  (let [creature (doto ^Node (make) (body/body!))
+        stamps (object-array frames)]
+    (step-bare! (util/nodify [creature (floor-under creature)]) frames stamps)
     {:stamps (vec stamps) :states (body-states creature)}))
 
 (defn measure-sim!
@@ -265,23 +272,12 @@
   (let [creature (doto ^Node (make) (body/body!))
         ^Geometry under (floor-under creature)
         height (+ (.y (.getWorldTranslation under)) 0.5)
-        stamps (object-array frames)
-        step (float (/ 1 fps))]
+        stamps (object-array frames)]
     (if observe
       (let [s (sim/simulation creature {:floor height :observe observe})]
         (dotimes [i frames] (aset stamps i (stamp)) (sim/step! s))
         (sim/destroy! s))
-      (let [space (bare-space)]
-        (cortex.engine/add-all! space (util/nodify [creature (sim/floor height)]))
-        (.setGravity space earth)
-        (doseq [^PhysicsRigidBody b (.getRigidBodyList space)]
-          (.setGravity b earth)
-          (.activate b))
-        (dotimes [i frames]
-          (aset stamps i (stamp))
-          (.update space step)
-          (.distributeEvents space))
-        (.destroy space)))
+      (step-bare! (util/nodify [creature (sim/floor height)]) frames stamps))
     {:stamps (vec stamps) :states (body-states creature)}))
 
 (defn measure-step-loop!
