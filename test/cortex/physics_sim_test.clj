@@ -1,6 +1,7 @@
 ;; Generated from org/physics-tab.org by lein tangle: edit the chapter, not this file.
 (ns cortex.physics-sim-test
   (:require [clojure.test :refer [deftest is testing]]
+            [cortex.blender-test :refer [read-json]]
             [cortex.physics-tab :as bp]
             [cortex.physics-tab-test :as pt]
             [cortex.body :as body]
@@ -20,7 +21,7 @@
 (defn- blender-sim
   "Blender's own simulation of fixture `name` (simulate_physics.py --times)."
   [name]
-  (pt/read-json (slurp (str folder name "_sim.json"))))
+  (read-json (slurp (str folder name "_sim.json"))))
 
 (defn- place
   "The translation of a Blender 4x4 (rows) in jME's axes."

@@ -2,6 +2,7 @@
 (ns cortex.physics-tab-test
   (:require [clojure.test :refer [deftest is testing]]
             [cortex.blender :as blender]
+            [cortex.blender-test :refer [read-json]]
             [cortex.physics-tab :as bp]
             [cortex.blender.rigid-body :as physics]
             [cortex.blender.scene :as scene]
@@ -21,58 +22,6 @@
 (def versions ["b34" "b45" "b50"])
 
 (defn fixture [v] (str "test/fixtures/blend/" v "/physics.blend"))
-
-(defn read-json
-  "A small JSON reader: objects as maps with string keys, arrays as
-  vectors, numbers as doubles or longs."
-  [^String s]
-  (let [pos (atom 0)
-        peek-char #(when (< @pos (count s)) (.charAt s @pos))
-        skip-ws #(while (and (peek-char) (Character/isWhitespace (char (peek-char)))) (swap! pos inc))
-        expect (fn [^String word v] (swap! pos + (count word)) v)]
-    (letfn [(value []
-              (skip-ws)
-              (let [c (peek-char)]
-                (cond
-                  (= c \{) (do (swap! pos inc)
-                               (loop [m {}]
-                                 (skip-ws)
-                                 (if (= (peek-char) \}) (do (swap! pos inc) m)
-                                     (let [k (value) _ (skip-ws) _ (swap! pos inc) v (value)]
-                                       (skip-ws)
-                                       (when (= (peek-char) \,) (swap! pos inc))
-                                       (recur (assoc m k v))))))
-                  (= c \[) (do (swap! pos inc)
-                               (loop [xs []]
-                                 (skip-ws)
-                                 (if (= (peek-char) \]) (do (swap! pos inc) xs)
-                                     (let [v (value)]
-                                       (skip-ws)
-                                       (when (= (peek-char) \,) (swap! pos inc))
-                                       (recur (conj xs v))))))
-                  (= c \") (let [sb (StringBuilder.)]
-                             (swap! pos inc)
-                             (loop []
-                               (let [ch (peek-char)]
-                                 (swap! pos inc)
-                                 (cond (= ch \") (str sb)
-                                       (= ch \\) (let [e (peek-char)]
-                                                   (swap! pos inc)
-                                                   (if (= e \u)
-                                                     (do (.append sb (char (Integer/parseInt (subs s @pos (+ @pos 4)) 16)))
-                                                         (swap! pos + 4))
-                                                     (.append sb (get {\n \newline \t \tab} e e)))
-                                                   (recur))
-                                       :else (do (.append sb ch) (recur))))))
-                  (= c \t) (expect "true" true)
-                  (= c \f) (expect "false" false)
-                  (= c \n) (expect "null" nil)
-                  :else (let [start @pos]
-                          (while (and (peek-char) (re-find #"[-+.eE0-9]" (str (peek-char))))
-                            (swap! pos inc))
-                          (let [t (subs s start @pos)]
-                            (if (re-find #"[.eE]" t) (Double/parseDouble t) (Long/parseLong t)))))))]
-      (value))))
 
 (defn oracle [v]
   (read-json (slurp (str "test/fixtures/blend/" v "/physics.json"))))
