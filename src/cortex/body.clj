@@ -185,21 +185,22 @@
   :rotation q (or nil when the body is the segment's own frame)}, or
   {:source :box} when its mesh encloses no volume."
   [^Geometry geom mass]
-  (if-let [{:keys [centre inertia]} (mass/mesh-properties (mesh-triangles geom) mass)]
-    (let [size (apply max 1e-9 (map #(Math/abs (double %)) (flatten (mesh-triangles geom))))
-          off-diagonal (max (Math/abs (double (get-in inertia [0 1])))
-                            (Math/abs (double (get-in inertia [0 2])))
-                            (Math/abs (double (get-in inertia [1 2]))))
-          diagonal [(get-in inertia [0 0]) (get-in inertia [1 1]) (get-in inertia [2 2])]
-          aligned? (<= off-diagonal (* 1e-6 (apply max 1e-12 diagonal)))
-          centred? (every? #(<= (Math/abs (double %)) (* 1e-6 size)) centre)]
-      (if (and aligned? centred?)
-        {:source :mesh :centre [0.0 0.0 0.0] :moments diagonal :rotation nil}
-        (let [{:keys [moments axes]} (if aligned?
-                                       {:moments diagonal :axes [[1.0 0.0 0.0] [0.0 1.0 0.0] [0.0 0.0 1.0]]}
-                                       (mass/principal inertia))]
-          {:source :mesh :centre centre :moments moments :rotation (quaternion-of axes)})))
-    {:source :box}))
+  (let [triangles (mesh-triangles geom)]
+    (if-let [{:keys [centre inertia]} (mass/mesh-properties triangles mass)]
+      (let [size (apply max 1e-9 (map #(Math/abs (double %)) (flatten triangles)))
+            off-diagonal (max (Math/abs (double (get-in inertia [0 1])))
+                              (Math/abs (double (get-in inertia [0 2])))
+                              (Math/abs (double (get-in inertia [1 2]))))
+            diagonal [(get-in inertia [0 0]) (get-in inertia [1 1]) (get-in inertia [2 2])]
+            aligned? (<= off-diagonal (* 1e-6 (apply max 1e-12 diagonal)))
+            centred? (every? #(<= (Math/abs (double %)) (* 1e-6 size)) centre)]
+        (if (and aligned? centred?)
+          {:source :mesh :centre [0.0 0.0 0.0] :moments diagonal :rotation nil}
+          (let [{:keys [moments axes]} (if aligned?
+                                         {:moments diagonal :axes [[1.0 0.0 0.0] [0.0 1.0 0.0] [0.0 0.0 1.0]]}
+                                         (mass/principal inertia))]
+            {:source :mesh :centre centre :moments moments :rotation (quaternion-of axes)})))
+      {:source :box})))
 
 (defn- set-inertia!
   "Give `control`'s body the principal `moments` of inertia (Bullet keeps
