@@ -161,6 +161,10 @@
          (println (str "Clojure " (clojure-version)
                        " in cortex: Ctrl-C interrupts an evaluation, Ctrl-D leaves."))
          (try (terminal! options)
-              (finally (stop-server! server))))))
+              (finally
+                ;; leaving: a Ctrl-C now (or one the terminal delivers
+                ;; late) must not turn a clean exit into the JVM's 130
+                (Signal/handle (Signal. "INT") SignalHandler/SIG_IGN)
+                (stop-server! server))))))
    (shutdown-agents)
    (System/exit 0)))

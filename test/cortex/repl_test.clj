@@ -327,7 +327,7 @@
     (is (= :ok (value conn reset-code)) "and again, with nothing changed")))
 
 (deftest the-terminal-repl
-  (let [proc (start-process (str "script -qfec 'stty cols 100 rows 40; " (:term commands)
+  (let [proc (start-process (str "script -qfec 'stty cols 100 rows 40; exec " (:term commands)
                                  "' /dev/null")
                             {"TERM" "xterm"})
         mark (fn [] (.length ^StringBuffer (:output proc)))
@@ -356,7 +356,7 @@
       (is (answer "(str \"G\" \"H\")\n" #"\"GH\"" 20) "Ctrl-C at the prompt changes nothing")
       (type-into! proc "\u0004")
       (is (.waitFor ^Process (:process proc) 30 TimeUnit/SECONDS) "Ctrl-D leaves")
-      (is (= 0 (.exitValue ^Process (:process proc))))
+      (is (= 0 (.exitValue ^Process (:process proc))) (str (:output proc)))
       (finally (stop-process! proc)))))
 
 (deftest the-terminal-repl-serves-injected-middleware
