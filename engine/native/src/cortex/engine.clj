@@ -237,14 +237,29 @@
   (.setSplitImpulseEnabled ^SolverInfo (.getSolverInfo space) false)
   space)
 
+(defn- scene-bodies
+  "The rigid bodies controlling `spatial` and its descendants, depth
+  first, in the order of the scene graph."
+  [^com.jme3.scene.Spatial spatial]
+  (concat (for [i (range (.getNumControls spatial))
+                :let [c (.getControl spatial (int i))]
+                :when (instance? PhysicsRigidBody c)]
+            c)
+          (when (instance? com.jme3.scene.Node spatial)
+            (mapcat scene-bodies (.getChildren ^com.jme3.scene.Node spatial)))))
+
 (defn add-all!
   "Add the bodies under `spatial`, and their joints, to `space`: Minie's
-  addAll adds only the bodies (jme3-jbullet's adds their joints too)."
+  addAll adds only the bodies (jme3-jbullet's adds their joints too).
+  The joints are added in the scene graph's order, body by body, as
+  jme3-jbullet adds them: Minie's lists of a space's bodies and joints
+  are in the order of their native addresses, which change from run to
+  run, and the solver's results depend on the order of its joints."
   [^PhysicsSpace space ^com.jme3.scene.Spatial spatial]
   (.addAll space spatial)
   (let [present (java.util.IdentityHashMap.)]
     (doseq [j (.getJointList space)] (.put present j true))
-    (doseq [^PhysicsRigidBody b (.getRigidBodyList space)
+    (doseq [^PhysicsRigidBody b (scene-bodies spatial)
             ^PhysicsJoint j (.listJoints b)
             :when (not (.containsKey present j))]
       (.put present j true)
