@@ -549,17 +549,20 @@
             ctx {:name name :rbc rbc :a a :b b
                  :pivot-a (body/pivot a center) :pivot-b (body/pivot b center)
                  :rot-a (body/body-frame a frame) :rot-b (body/body-frame b frame)}
-            {:keys [^PhysicsJoint joint warnings] :as made} (constraint-joint type ctx)]
+            {:keys [^PhysicsJoint joint warnings] :as made} (constraint-joint type ctx)
+            threshold (when (:use-breaking rbc)
+                        (finite "rigid body constraint" name rbc :breaking-threshold))]
         (engine/collide-linked! joint (not (:disable-collisions rbc)))
+        (when (and threshold (instance? MeteredSixDofJoint joint))
+          (.setBreakingThreshold ^MeteredSixDofJoint joint (float threshold)))
         (when-let [sc (:spring-control made)]
           (.addControl ^Spatial (:spatial (body-of name rbc bodies :ob2))
                        ^com.jme3.scene.control.Control sc))
         (cond-> (merge (dissoc made :spring-control)
                        {:object name :type type :joint joint :bodies [(:ob1 rbc) (:ob2 rbc)]
                         :warnings (into (vec warnings) (caveats name rbc))})
-          (:use-breaking rbc)
-          (assoc :breaking-threshold
-                 (finite "rigid body constraint" name rbc :breaking-threshold)))))))
+          threshold
+          (assoc :breaking-threshold threshold))))))
 
 (defn constraints!
   "Make the joint of every rigid body constraint of `creature` (see

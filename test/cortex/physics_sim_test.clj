@@ -234,9 +234,12 @@
             w (world/world (util/nodify [c]) {} world/no-op world/no-op)]
         (world/run-world! w 30)
         (is (< (Math/abs (- (/ 9.81 240) (cortex.engine/applied-impulse j))) 0.005))))
-    (testing "what happens after the break is chaotic: present numbers, not Blender's bar"
+    (testing "a breaking joint gives at most its threshold in the substep it breaks in, as in
+              Blender: the heavy weight falls as Blender's does (within a millimetre at 0.5 s)"
+      (is (< (get-in (:per-time r) [1 :errors "heavy"]) 0.001)))
+    (testing "the scene moves as Blender's does, at 0.5 and 1 s"
       (is (< (relative-median r 1) 0.02))
-      (is (< (relative-median r 2) 0.04)))))
+      (is (< (relative-median r 2) 0.02)))))
 
 (deftest a-chain-of-bone-shaped-bodies
   (let [r (case-run "rig-chain")
@@ -248,6 +251,7 @@
     (testing "no kick: after one step no bone is faster than gravity and the swing make it"
       (is (< first-step 0.5)))
     (is (gaps-hold? r nil))
-    (testing "jBullet's 6-DOF limits are not Bullet 2.8's: present numbers, not Blender's bar"
+    (testing "the limits hold as Bullet 2.8's: the chain swings as Blender's does, at 0.5, 1 and 2 s"
       (is (< (relative-median r 1) 0.02))
-      (is (< (relative-median r 2) 0.04)))))
+      (is (< (relative-median r 2) 0.02))
+      (is (< (relative-median r 3) 0.02)))))

@@ -4,6 +4,7 @@ package cortex;
 import com.bulletphysics.dynamics.RigidBody;
 import com.bulletphysics.dynamics.constraintsolver.Generic6DofConstraint;
 import com.bulletphysics.linearmath.Transform;
+import com.bulletphysics.linearmath.VectorUtil;
 import com.jme3.bullet.joints.SixDofJoint;
 import com.jme3.bullet.joints.motors.RotationalLimitMotor;
 import com.jme3.bullet.joints.motors.TranslationalLimitMotor;
@@ -13,17 +14,41 @@ import com.jme3.math.Matrix3f;
 import com.jme3.math.Vector3f;
 
 /**
- * jME's SixDofJoint, whose applied impulse (getAppliedImpulse) is what
- * the joint gave its bodies in the last physics step, measured by an
- * ImpulseMeter: jBullet's own Generic6DofConstraint never writes it.
- * Everything else is jME's SixDofJoint.
+ * jME's SixDofJoint, solved as Bullet 2.8's btGeneric6DofConstraint
+ * (the one Blender's FIXED, POINT and GENERIC constraints are) solves
+ * its rows, and whose applied impulse (getAppliedImpulse) is what
+ * Bullet 2.8 compares with a breaking threshold: the largest impulse of
+ * one row in the last physics step. jBullet's own Generic6DofConstraint
+ * (Bullet 2.72's) softens every row (a limit gets half the impulse it
+ * needs in an iteration, a locked axis 0.7 of it), corrects errors at
+ * other rates (0.5 for limits, 0.35 for locked axes, where Bullet 2.8
+ * uses the world's 0.2), lets a limit pull as well as push, and never
+ * writes its applied impulse. Here the rows are Bullet 2.8's: angular
+ * rows first, then linear; each row's impulse makes the relative
+ * velocity along its axis what the error correction wants (ERP 0.2); a
+ * limit only pushes; a locked axis holds both ways; and when a breaking
+ * threshold is set, no row's impulse in a step exceeds it, as Bullet 2.8
+ * clamps a breakable constraint's rows. Motors are jBullet's.
  */
 public class MeteredSixDofJoint extends SixDofJoint {
+    /**
+     * The error reduction of Bullet 2.8's constraint rows: the solver's
+     * btContactSolverInfo.m_erp, 0.2, which Blender never changes.
+     */
+    public static final float ERP = 0.2f;
+
     private final RotationalLimitMotor[] motors = new RotationalLimitMotor[3];
     private final TranslationalLimitMotor linearMotor;
 
     static final class Metered extends Generic6DofConstraint {
         final ImpulseMeter meter;
+        float threshold = Float.POSITIVE_INFINITY;
+        private final javax.vecmath.Vector3f axis = new javax.vecmath.Vector3f();
+        private final javax.vecmath.Vector3f va = new javax.vecmath.Vector3f();
+        private final javax.vecmath.Vector3f vb = new javax.vecmath.Vector3f();
+        private final javax.vecmath.Vector3f ra = new javax.vecmath.Vector3f();
+        private final javax.vecmath.Vector3f rb = new javax.vecmath.Vector3f();
+        private final javax.vecmath.Vector3f tmp = new javax.vecmath.Vector3f();
 
         Metered(RigidBody a, RigidBody b, Transform fa, Transform fb, boolean useA) {
             super(a, b, fa, fb, useA);
@@ -39,13 +64,104 @@ public class MeteredSixDofJoint extends SixDofJoint {
         @Override
         public void solveConstraint(float timeStep) {
             meter.before();
-            super.solveConstraint(timeStep);
+            this.timeStep = timeStep;
+            for (int i = 0; i < 3; i++) {
+                angularRow(i, timeStep);
+            }
+            for (int i = 0; i < 3; i++) {
+                linearRow(i, timeStep);
+            }
             meter.after();
         }
 
+        private static float clamp(float x, float lo, float hi) {
+            return x < lo ? lo : (x > hi ? hi : x);
+        }
+
+        /** Angle i: a motor as jBullet drives it, or a limit as Bullet 2.8 holds it. */
+        private void angularRow(int i, float dt) {
+            com.bulletphysics.dynamics.constraintsolver.RotationalLimitMotor m = angularLimits[i];
+            if (!m.needApplyTorques()) {
+                return;
+            }
+            getAxis(i, axis);
+            float inv = 1f / jacAng[i].getDiagonal();
+            if (m.currentLimit == 0) {
+                m.solveAngularLimits(dt, axis, inv, rbA, rbB);
+                return;
+            }
+            rbA.getAngularVelocity(va);
+            rbB.getAngularVelocity(vb);
+            va.sub(vb);
+            float target = -ERP * m.currentLimitError / dt;
+            float lo = -threshold;
+            float hi = threshold;
+            if (m.loLimit < m.hiLimit) {
+                if (m.currentLimit == 1) {
+                    lo = 0f;
+                } else {
+                    hi = 0f;
+                }
+            }
+            float old = m.accumulatedImpulse;
+            float sum = clamp(old + (target - axis.dot(va)) * inv, lo, hi);
+            m.accumulatedImpulse = sum;
+            tmp.scale(sum - old, axis);
+            rbA.applyTorqueImpulse(tmp);
+            tmp.negate();
+            rbB.applyTorqueImpulse(tmp);
+        }
+
+        /** Axis i: locked, limited or free, as Bullet 2.8 holds it. */
+        private void linearRow(int i, float dt) {
+            com.bulletphysics.dynamics.constraintsolver.TranslationalLimitMotor l = linearLimits;
+            if (!l.isLimited(i)) {
+                return;
+            }
+            float inv = 1f / jacLinear[i].getDiagonal();
+            (useLinearReferenceFrameA ? calculatedTransformA : calculatedTransformB).basis.getColumn(i, axis);
+            tmp.sub(calculatedTransformB.origin, calculatedTransformA.origin);
+            float depth = tmp.dot(axis);
+            float min = VectorUtil.getCoord(l.lowerLimit, i);
+            float max = VectorUtil.getCoord(l.upperLimit, i);
+            float lo = -threshold;
+            float hi = threshold;
+            if (min < max) {
+                if (depth > max) {
+                    depth -= max;
+                    lo = 0f;
+                } else if (depth < min) {
+                    depth -= min;
+                    hi = 0f;
+                } else {
+                    return;
+                }
+            } else {
+                depth -= min;
+            }
+            ra.sub(anchorPos, rbA.getCenterOfMassPosition(tmp));
+            rb.sub(anchorPos, rbB.getCenterOfMassPosition(tmp));
+            rbA.getVelocityInLocalPoint(ra, va);
+            rbB.getVelocityInLocalPoint(rb, vb);
+            va.sub(vb);
+            float old = VectorUtil.getCoord(l.accumulatedImpulse, i);
+            float sum = clamp(old + (ERP * depth / dt - axis.dot(va)) * inv, lo, hi);
+            VectorUtil.setCoord(l.accumulatedImpulse, i, sum);
+            tmp.scale(sum - old, axis);
+            rbA.applyImpulse(tmp, ra);
+            tmp.negate();
+            rbB.applyImpulse(tmp, rb);
+        }
+
+        /** The largest impulse of one row (linear or angular) in the step. */
         @Override
         public float getAppliedImpulse() {
-            return meter.rowMax();
+            float best = 0f;
+            for (int i = 0; i < 3; i++) {
+                best = Math.max(best, Math.abs(VectorUtil.getCoord(linearLimits.accumulatedImpulse, i)));
+                best = Math.max(best, Math.abs(angularLimits[i].accumulatedImpulse));
+            }
+            return best;
         }
     }
 
@@ -61,6 +177,15 @@ public class MeteredSixDofJoint extends SixDofJoint {
             motors[i] = new RotationalLimitMotor(c.getRotationalLimitMotor(i));
         }
         linearMotor = new TranslationalLimitMotor(c.getTranslationalLimitMotor());
+    }
+
+    /**
+     * Break at `threshold`: no row's impulse in a step exceeds it, as
+     * Bullet 2.8 clamps the rows of a breakable constraint (the caller
+     * removes the joint when getAppliedImpulse reaches it).
+     */
+    public void setBreakingThreshold(float threshold) {
+        ((Metered) constraint).threshold = threshold;
     }
 
     @Override

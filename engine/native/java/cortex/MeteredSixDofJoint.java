@@ -14,4 +14,9 @@ public class MeteredSixDofJoint extends SixDofJoint {
         super(nodeA, nodeB, pivotA, pivotB, rotA, rotB, useLinearReferenceFrameA);
         setFeedback(true);
     }
+
+    /** Native Bullet clamps and breaks the constraint itself at `threshold`. */
+    public void setBreakingThreshold(float threshold) {
+        setBreakingImpulseThreshold(threshold);
+    }
 }
