@@ -109,6 +109,7 @@
                                [cn [(dist (apply-t (ours a) pa) (apply-t (ours b) pb))
                                     (dist (apply-t (theirs a) pa) (apply-t (theirs b) pb))]]))})]
        {:name name :size size :moving (vec moving)
+        :ours (mapv @seen frames)
         :per-time (vec per-time)
         :median (mapv #(median (map (:errors %) moving)) per-time)
         :broken (bp/broken-joints creature)
@@ -240,6 +241,25 @@
     (testing "the scene moves as Blender's does, at 0.5 and 1 s"
       (is (< (relative-median r 1) 0.02))
       (is (< (relative-median r 2) 0.02)))))
+
+(defn- median-against
+  "The median, over `r`'s moving bodies, of the distance between
+  cortex's body and Blender's simulation `sim` at time index `i`, over
+  the scene's size."
+  [r sim i]
+  (/ (median (for [n (:moving r)]
+               (dist (second (get (nth (:ours r) i) n))
+                     (second (transform (nth (get-in sim ["objects" n]) i))))))
+     (:size r)))
+
+(deftest three-blenders-are-the-judge
+  (doseq [name ["substeps" "ragdoll" "collisions" "outside" "deactivation" "breaking" "rig-chain"]
+          version ["4.5" "5.2"]
+          :let [sim (read-json (slurp (str folder name "_sim-" version ".json")))
+                r (case-run name)]]
+    (testing (str name " against Blender " (get sim "blender_version"))
+      (is (= (set (keys (get sim "objects"))) (set (keys (get (blender-sim name) "objects")))))
+      (is (< (median-against r sim 2) 0.02)))))
 
 (deftest a-chain-of-bone-shaped-bodies
   (let [r (case-run "rig-chain")
