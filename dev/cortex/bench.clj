@@ -208,10 +208,12 @@
 
 (defn bare-space
   "A Bullet space made as BulletAppState makes one: world bounds of
-  +-10000 and the DBVT broadphase."
+  +-10000 and the DBVT broadphase, set up as cortex's worlds are
+  (`cortex.engine/configure-space!`)."
   ^PhysicsSpace []
-  (PhysicsSpace. (Vector3f. -10000 -10000 -10000) (Vector3f. 10000 10000 10000)
-                 PhysicsSpace$BroadphaseType/DBVT))
+  (cortex.engine/configure-space!
+   (PhysicsSpace. (Vector3f. -10000 -10000 -10000) (Vector3f. 10000 10000 10000)
+                  PhysicsSpace$BroadphaseType/DBVT)))
 
 (defn- step-bare!
   "Put the bodies under `root` into a new bare space, under earth's

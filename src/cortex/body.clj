@@ -730,7 +730,7 @@
                        ^Vector3f pivot-a ^Vector3f pivot-b
                        (.mult (body-frame control-a rotation) axis)
                        (.mult (body-frame control-b rotation) axis))
-      (.setLimit (float low) (float high)))))
+      (engine/limit-hinge! low high))))
 
 (defn- cone-limits
   "[frame-turn [twist y-limit z-limit]] for a cone of swing limits `xz`

@@ -230,6 +230,13 @@
       {:frame-a (basis-rotation (.getAFrame ^ConeTwistConstraint c (Transform.)))
        :frame-b (basis-rotation (.getBFrame ^ConeTwistConstraint c (Transform.)))})))
 
+(defn limit-hinge!
+  "Limit the HingeJoint `joint` to [low high], in the engine's sense of
+  its angle (see `hinge-limits`)."
+  [^com.jme3.bullet.joints.HingeJoint joint low high]
+  (.setLimit joint (float low) (float high))
+  joint)
+
 (defn configure-space!
   "Set `space` up as cortex simulates: here jBullet's defaults, already."
   ^PhysicsSpace [^PhysicsSpace space]

@@ -231,10 +231,49 @@
                       [(double (.getX q)) (double (.getY q)) (double (.getZ q)) (double (.getW q))]))]
       {:frame-a (q (.getRotA j)) :frame-b (q (.getRotB j)) :axis [0.0 0.0 1.0]})))
 
+(def ^:private limited-hinges
+  "Each hinge cortex limits (weakly held) -> its limits [low high] and
+  its angle before the last step, a double array [low high angle seen?]."
+  (java.util.Collections/synchronizedMap (java.util.WeakHashMap.)))
+
+(defn- set-limits! [^com.jme3.bullet.joints.HingeJoint joint low high]
+  (.setLimit joint (float low) (float high) (float 0.9) (float 1.0) (float 0.0)))
+
+(defn limit-hinge!
+  "Limit the HingeJoint `joint` to [low high], in the engine's sense of
+  its angle (see `hinge-limits`), speculatively: see above."
+  [^com.jme3.bullet.joints.HingeJoint joint low high]
+  (set-limits! joint low high)
+  (.put limited-hinges joint (double-array [low high 0.0 0.0]))
+  joint)
+
+(defn- speculate!
+  "Before a step: stop each limited hinge of `space` that would pass a
+  limit in it, and give back their limits to the others."
+  [^PhysicsSpace space]
+  (doseq [j (.getJointList space)
+          :let [^doubles state (.get limited-hinges j)]
+          :when state]
+    (let [^com.jme3.bullet.joints.HingeJoint h j
+          lo (aget state 0) hi (aget state 1)
+          angle (double (.getHingeAngle h))
+          next-angle (if (pos? (aget state 3)) (- (* 2.0 angle) (aget state 2)) angle)
+          margin 1e-4]
+      (cond (and (<= angle hi) (> next-angle hi)) (set-limits! h lo (max lo (- angle margin)))
+            (and (>= angle lo) (< next-angle lo)) (set-limits! h (min hi (+ angle margin)) hi)
+            (or (not= (.getLowerLimit h) (float lo)) (not= (.getUpperLimit h) (float hi)))
+            (set-limits! h lo hi))
+      (aset state 2 angle)
+      (aset state 3 1.0))))
+
 (defn configure-space!
-  "Set `space` up as cortex simulates: split impulse off, as in jBullet."
+  "Set `space` up as cortex simulates: split impulse off, as in jBullet;
+  hinges limited speculatively."
   ^PhysicsSpace [^PhysicsSpace space]
   (.setSplitImpulseEnabled ^SolverInfo (.getSolverInfo space) false)
+  (.addTickListener space (reify com.jme3.bullet.PhysicsTickListener
+                            (prePhysicsTick [_ s _] (speculate! s))
+                            (physicsTick [_ _ _])))
   space)
 
 (defn- scene-bodies
@@ -271,7 +310,9 @@
   `collision-object` names bodies), touching? when a point lies within
   `touch-distance` or carried an impulse, impulse the summed normal
   impulse of the points in contact. `wanted?` (of a collision object)
-  picks the manifolds worth reading; the others are skipped."
+  picks the manifolds worth reading; the others are skipped. Every
+  point's impulse counts: native Bullet's resting points lie a hair
+  apart (within its contact threshold) and still carry the weight."
   [^PhysicsSpace space touch-distance wanted? f init]
   (let [d (double touch-distance)]
     (reduce (fn [acc ^long m]
@@ -284,7 +325,7 @@
                           (if (< i n)
                             (let [p (PersistentManifolds/getPointId m i)
                                   dist (double (ManifoldPoints/getDistance1 p))
-                                  imp (if (<= dist 0.0) (double (ManifoldPoints/getAppliedImpulse p)) 0.0)]
+                                  imp (double (ManifoldPoints/getAppliedImpulse p))]
                               (recur (inc i) (or touching? (<= dist d) (pos? imp)) (+ impulse imp)))
                             [touching? impulse]))]
                     (f acc b0 b1 touching? impulse))
