@@ -59,6 +59,10 @@
             "term" ["trampoline" "run" "-m" "cortex.repl" :project/repl-options]
             ;; lein bench [--quick]: build and simulation timings; see org/bench.org
             "bench" ["run" "-m" "cortex.bench"]
+            ;; lein engines: jBullet and native Bullet side by side; see org/engine.org
+            "engines" ["do" ["run" "-m" "cortex.engine-speed" "--write"]
+                       ["with-profile" "+native" "run" "-m" "cortex.engine-speed" "--write"]
+                       ["run" "-m" "cortex.engine-speed" "--compare"]]
             ;; lein evolve: the worm learns to crawl; see org/evolve.org
             "evolve" ["run" "-m" "cortex.evolve"]}
   :profiles {:dev {:source-paths ["dev"]

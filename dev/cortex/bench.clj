@@ -756,7 +756,8 @@
   [{:keys [build exponents sim heap step-loop blender-load targets machine rollouts]}]
   (str/join
    "\n\n"
-   [(str "cortex benchmark, " (:when machine) ", " (:cores machine) " cores, "
+   [(str "cortex benchmark on " ({:jbullet "jBullet" :native "native Bullet"} (:engine machine)) ", "
+         (:when machine) ", " (:cores machine) " cores, "
          (:java machine) ", load average " (fmt 2 (:load-before machine))
          " before, " (fmt 2 (:load-after machine)) " after; medians after warm-up")
     (str "1. Building: body! split into physical! (hulls), joint targets, connect\n"
@@ -829,6 +830,7 @@
   "What the numbers were measured on."
   []
   {:when (str (java.time.LocalDateTime/now))
+   :engine cortex.engine/name
    :cores (.availableProcessors (Runtime/getRuntime))
    :java (System/getProperty "java.version")
    :jvm-args (vec (.getInputArguments (ManagementFactory/getRuntimeMXBean)))})

@@ -669,6 +669,7 @@
 (defmethod joint-keys :point [_] #{})
 (defmethod joint-keys :hinge [_] #{:limit :axis})
 (defmethod joint-keys :cone [_] #{:limit-xz :limit-xy :twist})
+(defmethod joint-keys :spring [_] #{:limit-xz :limit-xy :twist :stiffness :damping})
 
 (defn check-keys
   "`description`, or an error naming its unknown keys and the keys its
@@ -763,6 +764,24 @@
         (.setLinearUpperLimit Vector3f/ZERO)
         (.setAngularLowerLimit (Vector3f. (float (- t)) (float (- y)) (float (- z))))
         (.setAngularUpperLimit (Vector3f. (float t) (float y) (float z)))))))
+
+(defmethod joint-dispatch :spring
+  [constraints control-a control-b pivot-a pivot-b ^Matrix3f rotation]
+  (let [field (fn [k default]
+                (let [v (get constraints k default)]
+                  (if (and (util/finite? v) (<= 0.0 (double v)))
+                    (double v)
+                    (throw (ex-info (str "spring joint needs a number >= 0 for " k ", not " (pr-str v))
+                                    {:key k :value v})))))
+        stiffness (field :stiffness nil)
+        damping (field :damping 0.0)
+        free (fn [k] (let [v (field k Math/PI)]
+                       (if (<= v Math/PI) v (throw (angle-error (str "spring " k) v "[0, pi]")))))
+        [^Matrix3f turn limits] (cone-limits (free :limit-xz) (free :limit-xy) (free :twist))
+        frame (.mult rotation turn)]
+    (engine/spring-joint control-a control-b pivot-a pivot-b
+                         (body-frame control-a frame) (body-frame control-b frame)
+                         limits stiffness damping)))
 
 (defn pivot
   "`world-point` in the frame of `control`'s rigid body: relative to

@@ -223,8 +223,8 @@
 
 (deftest bad-joints-name-the-joint
   (testing "unknown types list the known ones"
-    (let [m (connect-message "{:type :spring}")]
-      (is (re-find #"joint \"neck\": unknown joint type :spring; known types: :cone, :hinge, :point" m))))
+    (let [m (connect-message "{:type :rubber}")]
+      (is (re-find #"joint \"neck\": unknown joint type :rubber; known types: :cone, :hinge, :point, :spring" m))))
   (testing "a hinge needs limits"
     (is (re-find #"joint \"neck\": hinge needs :limit" (connect-message "{:type :hinge}"))))
   (testing "a cone needs its three angles"
@@ -300,6 +300,40 @@
       (is (> (apply max (map #(Math/abs (double %)) @angles)) 0.25)))
     (testing "and never far past it"
       (is (every? #(<= (Math/abs (double %)) 0.33) @angles)))))
+
+(defn- spring-droop
+  "How far (radians) the beam of a spring-jointed cantilever of
+  `stiffness` hangs after 5 s, and its largest speed in the last second."
+  [stiffness]
+  (let [c (creature "sprung"
+                    [(segment "post" (Vector3f. -1.02 2 0) :mass 0)
+                     (segment "beam" (Vector3f. 1.02 2 0) :mass (float 5))]
+                    [(marker "elbow" (Vector3f. 0 2 0)
+                             (str "{:type :spring :stiffness " stiffness " :damping 20}"))])
+        _ (body/body! c)
+        beam (second (body/segments c))
+        fastest (atom 0.0) frame (atom 0)
+        w (world/world (util/nodify [c]) {} #(world/set-gravity % earth)
+                       (fn [_ _]
+                         (when (> (swap! frame inc) 240)
+                           (swap! fastest max (.length (.getLinearVelocity
+                                                        ^RigidBodyControl
+                                                        (.getControl ^Geometry beam RigidBodyControl)))))))]
+    (world/run-world! w 300)
+    [(.toAngleAxis (.getWorldRotation ^Geometry beam) (Vector3f.)) @fastest]))
+
+(deftest spring-joints
+  (if (= :native engine/name)
+    (let [[stiff stiff-speed] (spring-droop 1000)
+          [soft] (spring-droop 100)]
+      (testing "a stiff spring holds the beam near m g l / k"
+        (is (< 0.03 stiff 0.07) (str "droop " stiff))
+        (is (< stiff-speed 0.01) "and it has settled"))
+      (testing "a soft one lets it sag"
+        (is (< 0.3 soft 1.2) (str "droop " soft))))
+    (let [e (try (spring-droop 1000) nil (catch clojure.lang.ExceptionInfo e e))]
+      (is (some? e))
+      (is (re-find #"needs native Bullet" (str (ex-message e) (some-> e ex-cause ex-message)))))))
 
 (deftest other-joint-kinds-hold
   (doseq [[text kind] [["{:type :point}" SixDofJoint]

@@ -237,6 +237,14 @@
   (.setLimit joint (float low) (float high))
   joint)
 
+(defn spring-joint
+  "A spring joint (see the body chapter): jBullet has none, so an error
+  that says what to do instead."
+  [_ _ _ _ _ _ _ _ _]
+  (throw (ex-info (str "a :spring joint needs native Bullet (lein with-profile +native ...);"
+                       " on jBullet use a :cone held by a muscle")
+                  {:engine name})))
+
 (defn configure-space!
   "Set `space` up as cortex simulates: here jBullet's defaults, already."
   ^PhysicsSpace [^PhysicsSpace space]

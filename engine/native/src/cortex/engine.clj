@@ -6,6 +6,7 @@
   PhysicsRigidBody itself."
   (:refer-clojure :exclude [name])
   (:import (com.jme3.bullet PhysicsSpace SolverInfo)
+           (com.jme3.bullet.joints.motors MotorParam)
            (com.jme3.bullet.collision ManifoldPoints PersistentManifolds PhysicsCollisionObject)
            (com.jme3.bullet.collision.shapes CollisionShape CompoundCollisionShape
                                              GImpactCollisionShape HullCollisionShape)
@@ -231,7 +232,7 @@
                       [(double (.getX q)) (double (.getY q)) (double (.getZ q)) (double (.getW q))]))]
       {:frame-a (q (.getRotA j)) :frame-b (q (.getRotB j)) :axis [0.0 0.0 1.0]})))
 
-(def ^:private limited-hinges
+(def ^:private ^java.util.Map limited-hinges
   "Each hinge cortex limits (weakly held) -> its limits [low high] and
   its angle before the last step, a double array [low high angle seen?]."
   (java.util.Collections/synchronizedMap (java.util.WeakHashMap.)))
@@ -265,6 +266,33 @@
             (set-limits! h lo hi))
       (aset state 2 angle)
       (aset state 3 1.0))))
+
+(defn spring-joint
+  "A spring joint (see the body chapter): a New6Dof (Bullet's
+  btGeneric6DofSpring2Constraint) between the bodies of `control-a` and
+  `control-b` at `pivot-a`, `pivot-b` with frames `frame-a`, `frame-b`
+  (Matrix3f, each in its body's frame), its translation locked, its
+  rotations (Euler XYZ in the joint's frame) within [-t t], [-y y],
+  [-z z] of `limits` [t y z], each sprung towards 0 with `stiffness`
+  (N m/rad) and `damping` (N m s/rad)."
+  [control-a control-b ^Vector3f pivot-a ^Vector3f pivot-b
+   ^Matrix3f frame-a ^Matrix3f frame-b [t y z] stiffness damping]
+  (let [j (com.jme3.bullet.joints.New6Dof. ^PhysicsRigidBody control-a ^PhysicsRigidBody control-b
+                                            pivot-a pivot-b frame-a frame-b
+                                            com.jme3.bullet.RotationOrder/XYZ)
+        tm (.getTranslationMotor j)]
+    (.set tm MotorParam/LowerLimit (Vector3f.))
+    (.set tm MotorParam/UpperLimit (Vector3f.))
+    (doseq [[i lim] (map-indexed vector [t y z])
+            :let [m (.getRotationMotor j (int i))
+                  dof (int (+ 3 i))]]
+      (.set m MotorParam/LowerLimit (float (- (double lim))))
+      (.set m MotorParam/UpperLimit (float lim))
+      (.enableSpring j dof true)
+      (.setStiffness j dof (float stiffness) false)
+      (.setDamping j dof (float damping) false)
+      (.setEquilibriumPoint j dof (float 0)))
+    j))
 
 (defn configure-space!
   "Set `space` up as cortex simulates: split impulse off, as in jBullet;
