@@ -71,13 +71,16 @@
       (doseq [{:keys [physics-joint type description] :as rec} (body/joint-records creature)
               :when (#{:hinge :cone} type)]
         (let [{:keys [frame-a frame-b axis]} ((requiring-resolve 'cortex.proprioception/rest-frames) rec)
+              ^com.bulletphysics.dynamics.RigidBody
               ra (.getObjectId (.getBodyA ^com.jme3.bullet.joints.PhysicsJoint physics-joint))
+              ^com.bulletphysics.dynamics.RigidBody
               rb (.getObjectId (.getBodyB ^com.jme3.bullet.joints.PhysicsJoint physics-joint))
               da #(double-array (map double %))
               c (if (= type :hinge)
                   (let [[lo hi] (:limit description)]
-                    (cortex.JointLimit. ra rb (da frame-a) (da frame-b) (da axis) (double lo) (double hi)))
-                  (cortex.JointLimit. ra rb (da frame-a) (da frame-b) (double (:twist description))
+                    (cortex.JointLimit. ra rb ^doubles (da frame-a) ^doubles (da frame-b) ^doubles (da axis)
+                                        (double lo) (double hi)))
+                  (cortex.JointLimit. ra rb ^doubles (da frame-a) ^doubles (da frame-b) (double (:twist description))
                                       (double (:limit-xz description)) (double (:limit-xy description))))]
           (when-let [v (:erp lim)] (set! (.erp ^cortex.JointLimit c) (float v)))
           (when (contains? lim :spec) (set! (.speculative ^cortex.JointLimit c) (boolean (:spec lim))))
