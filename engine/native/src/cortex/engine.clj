@@ -68,11 +68,12 @@
   taking `types`, made accessible."
   [^Class class name types]
   (let [types (into-array Class types)]
-    (doto ^java.lang.reflect.AccessibleObject
+    (let [^java.lang.reflect.AccessibleObject member
           (if name
             (.getDeclaredMethod class ^String name ^"[Ljava.lang.Class;" types)
-            (.getDeclaredConstructor class ^"[Ljava.lang.Class;" types))
-      (.setAccessible true))))
+            (.getDeclaredConstructor class ^"[Ljava.lang.Class;" types))]
+      (.setAccessible member true)
+      member)))
 
 (defn- indexed-mesh
   "Minie's IndexedMesh (the triangles a mesh shape is made of) of the
