@@ -25,8 +25,7 @@
   (:import (com.jme3.bullet.collision.shapes BoxCollisionShape CapsuleCollisionShape
                                              CollisionShape ConeCollisionShape
                                              CylinderCollisionShape GImpactCollisionShape
-                                             HullCollisionShape MeshCollisionShape
-                                             SphereCollisionShape)
+                                             HullCollisionShape SphereCollisionShape)
            (com.jme3.bullet.control RigidBodyControl)
            (com.jme3.bullet.joints PhysicsJoint SixDofJoint SliderJoint)
            (com.jme3.math Matrix3f Vector3f)
@@ -86,6 +85,11 @@
       (fail what name (str (str/replace (clojure.core/name k) "-" "_") " must be a finite number, not "
                            (pr-str v))
             {:key k :value v}))))
+
+(defn- fraction
+  "`x` clamped to [0, 1]."
+  ^double [^double x]
+  (min 1.0 (max 0.0 x)))
 
 (defn- object-geometries
   "The Geometries of object Node `node` (one per material)."
@@ -187,7 +191,7 @@
           "CONVEX_HULL" [(hull)]
           "MESH" [(let [^com.jme3.bullet.collision.shapes.CollisionShape
                         s (if static?
-                            (MeshCollisionShape. (merged-mesh geoms))
+                            (engine/mesh-shape (merged-mesh geoms))
                             (engine/gimpact-shape (merged-mesh geoms)))]
                     (.setScale s ^Vector3f scale)
                     s)]
@@ -236,11 +240,12 @@
             groups (:col-groups rb)]
         (.setFriction c (float (finite "rigid body" name rb :friction)))
         (.setRestitution c (float (finite "rigid body" name rb :restitution)))
-        (.setDamping c (float (finite "rigid body" name rb :lin-damping))
-                     (float (finite "rigid body" name rb :ang-damping)))
+        ;; Bullet clamps damping to [0, 1] (btRigidBody::setDamping); Minie
+        ;; refuses anything else, so both engines are given it clamped
+        (.setDamping c (float (fraction (finite "rigid body" name rb :lin-damping)))
+                     (float (fraction (finite "rigid body" name rb :ang-damping))))
         (when (integer? groups)
-          (.setCollisionGroup c (int (bit-and (long groups) 0xfffff)))
-          (.setCollideWithGroups c (int (bit-and (long groups) 0xfffff))))
+          (engine/set-collections! c groups))
         (when (:kinematic rb) (.setKinematic c true))
         (when empty
           (engine/clear-inertia! c))
@@ -553,8 +558,8 @@
             threshold (when (:use-breaking rbc)
                         (finite "rigid body constraint" name rbc :breaking-threshold))]
         (engine/collide-linked! joint (not (:disable-collisions rbc)))
-        (when (and threshold (instance? MeteredSixDofJoint joint))
-          (.setBreakingThreshold ^MeteredSixDofJoint joint (float threshold)))
+        (when threshold
+          (engine/breaking-threshold! joint threshold))
         (when-let [sc (:spring-control made)]
           (.addControl ^Spatial (:spatial (body-of name rbc bodies :ob2))
                        ^com.jme3.scene.control.Control sc))
@@ -690,7 +695,7 @@
           (when @enabled
             (doseq [{:keys [object ^PhysicsJoint joint breaking-threshold]} breakable
                     :when (and (not (.containsKey ^java.util.Map broken object))
-                               (>= (engine/applied-impulse joint) (double breaking-threshold)))]
+                               (engine/broken? joint breaking-threshold))]
               (.remove ^com.jme3.bullet.PhysicsSpace s joint)
               (.destroy joint)
               (.put ^java.util.Map broken object n))))))))

@@ -150,7 +150,7 @@
                 (is (= [(get rbc "object1") (get rbc "object2")] [a b]))
                 (is (identical? (.getBodyA joint) (control creature a)))
                 (is (identical? (.getBodyB joint) (control creature b)))
-                (is (= (not (get rbc "disable_collisions")) (.isCollisionBetweenLinkedBodys joint)))
+                (is (= (not (get rbc "disable_collisions")) (cortex.engine/collide-linked? joint)))
                 (when (and (= "HINGE" type) (get rbc "use_limit_ang_z"))
                   (is (same? (bp/hinge-limit (get rbc "limit_ang_z_lower"))
                              (.getLowerLimit ^FrameHingeJoint joint)))

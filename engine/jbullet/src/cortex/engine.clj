@@ -16,9 +16,11 @@
            (com.bulletphysics.util IntArrayList ObjectArrayList)
            (com.jme3.bullet PhysicsSpace)
            (com.jme3.bullet.collision PhysicsCollisionObject)
-           (com.jme3.bullet.collision.shapes CollisionShape GImpactCollisionShape)
+           (com.jme3.bullet.collision.shapes CollisionShape GImpactCollisionShape
+                                             MeshCollisionShape)
            (com.jme3.bullet.joints PhysicsJoint)
            (com.jme3.bullet.objects PhysicsRigidBody)
+           (cortex MeteredSixDofJoint)
            (com.jme3.math Matrix3f Vector3f)
            (com.jme3.scene Mesh)
            (javax.vecmath Quat4f)))
@@ -54,6 +56,11 @@
   "A GImpact (moving triangle mesh) collision shape of `mesh`."
   ^CollisionShape [^Mesh mesh]
   (GImpactCollisionShape. mesh))
+
+(defn mesh-shape
+  "A static triangle mesh (BVH) collision shape of `mesh`."
+  ^CollisionShape [^Mesh mesh]
+  (MeshCollisionShape. mesh))
 
 (defn orientation
   "How the engine body `rb` is turned now, [x y z w], jME's axes."
@@ -123,6 +130,31 @@
                          :start-asleep CollisionObject/WANTS_DEACTIVATION
                          :never CollisionObject/DISABLE_DEACTIVATION)))
 
+(defn set-collections!
+  "Put `body` in Blender's collision collections `mask` (20 bits): it
+  collides with a body that shares one of them, and with what is in
+  jME's first collision group (a floor, say) when `mask` has the
+  first. jME's groups do it here: a body's group and the groups it
+  collides with are both `mask`."
+  [^PhysicsCollisionObject body mask]
+  (let [m (int (bit-and (long mask) 0xfffff))]
+    (.setCollisionGroup body m)
+    (.setCollideWithGroups body m)))
+
+(defn breaking-threshold!
+  "Make `joint` breakable at `threshold`: here a 6-DOF joint clamps its
+  rows at it (see MeteredSixDofJoint); every joint measures its impulse
+  (see `broken?`)."
+  [^PhysicsJoint joint threshold]
+  (when (instance? MeteredSixDofJoint joint)
+    (.setBreakingThreshold ^MeteredSixDofJoint joint (float threshold))))
+
+(defn broken?
+  "Whether the breakable `joint` broke in the last substep: its applied
+  impulse reached `threshold`."
+  [^PhysicsJoint joint threshold]
+  (>= (.getAppliedImpulse joint) (double threshold)))
+
 (defn hull-points
   "The points of `shape`'s hull (or of its first child's, for a compound
   shape), [[x y z] ...], or nil when it is no hull."
@@ -191,6 +223,11 @@
   [^PhysicsJoint joint collide?]
   (.setCollisionBetweenLinkedBodys joint (boolean collide?))
   joint)
+
+(defn collide-linked?
+  "Do the two bodies `joint` links collide with each other?"
+  [^PhysicsJoint joint]
+  (.isCollisionBetweenLinkedBodys joint))
 
 (defn pivots
   "[pivot-a pivot-b] of `joint`: its point in each body's frame."

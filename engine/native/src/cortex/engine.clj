@@ -7,15 +7,20 @@
   (:refer-clojure :exclude [name])
   (:import (com.jme3.bullet PhysicsSpace SolverInfo)
            (com.jme3.bullet.joints.motors MotorParam)
-           (com.jme3.bullet.collision ManifoldPoints PersistentManifolds PhysicsCollisionObject)
+           (com.jme3.bullet.collision ManifoldPoints PersistentManifolds PhysicsCollisionObject
+                                      PhysicsCollisionGroupListener)
            (com.jme3.bullet.collision.shapes CollisionShape CompoundCollisionShape
-                                             GImpactCollisionShape HullCollisionShape)
-           (com.jme3.bullet.collision.shapes.infos ChildCollisionShape)
+                                             GImpactCollisionShape HullCollisionShape
+                                             MeshCollisionShape)
+           (com.jme3.bullet.collision.shapes.infos ChildCollisionShape IndexedMesh)
            (com.jme3.bullet.joints PhysicsJoint Constraint)
            (com.jme3.bullet.objects PhysicsRigidBody)
            (com.jme3.math Matrix3f Quaternion Vector3f)
-           (com.jme3.scene Mesh)
-           (com.jme3.system NativeLibraryLoader Platform)))
+           (com.jme3.scene Mesh VertexBuffer$Type)
+           (com.jme3.scene.mesh IndexBuffer)
+           (com.jme3.system NativeLibraryLoader Platform)
+           (com.jme3.util BufferUtils)
+           (java.lang.reflect Constructor Field Method)))
 
 (set! *warn-on-reflection* true)
 
@@ -53,14 +58,66 @@
   (.getPhysicsRotationMatrix body (Matrix3f.)))
 
 (defn applied-impulse
-  "The impulse `joint` applied in the last step (its feedback must be on)."
+  "The impulse `joint` applied in the last step (its feedback must be
+  on): its size, as jBullet's ImpulseMeter gives it (native Bullet
+  keeps the signed impulse of the constraint's last row)."
   ^double [^Constraint joint]
-  (.getAppliedImpulse joint))
+  (Math/abs (.getAppliedImpulse joint)))
+
+(defn- private-member
+  "The declared constructor (`name` nil) or method `name` of `class`
+  taking `types`, made accessible."
+  [^Class class name types]
+  (let [types (into-array Class types)]
+    (let [^java.lang.reflect.AccessibleObject member
+          (if name
+            (.getDeclaredMethod class ^String name ^"[Ljava.lang.Class;" types)
+            (.getDeclaredConstructor class ^"[Ljava.lang.Class;" types))]
+      (.setAccessible member true)
+      member)))
+
+(defn- indexed-mesh
+  "Minie's IndexedMesh (the triangles a mesh shape is made of) of the
+  triangles of `mesh`. Every public way to build one (from a Mesh,
+  from positions and indices, from a saved file) calls jME 3.6's
+  IndexBuffer.getFormat or put(int, int), which jME 3.2.4 lacks; so
+  the mesh is made as its own constructor makes it (32-bit indices),
+  its fields set and its native mesh created through reflection."
+  ^IndexedMesh [^Mesh mesh]
+  (let [positions (.getFloatBuffer mesh VertexBuffer$Type/Position)
+        n-vertices (quot (.limit positions) 3)
+        ^IndexBuffer is (.getIndicesAsList mesh)
+        indices (int-array (.size is))
+        _ (dotimes [i (alength indices)] (aset indices i (.get is (int i))))
+        ^Constructor make (private-member IndexedMesh nil [])
+        im ^IndexedMesh (.newInstance make (object-array 0))
+        field! (fn [^String name value]
+                 (let [f (.getDeclaredField IndexedMesh name)]
+                   (.setAccessible f true)
+                   (.set f im value)))]
+    (field! "vertexPositions" (doto (BufferUtils/createFloatBuffer (* 3 n-vertices))
+                                (.put (doto (.duplicate positions) (.rewind)))
+                                (.flip)))
+    (field! "vertexStride" (int 12))
+    (field! "numVertices" (int n-vertices))
+    (field! "indices" (IndexBuffer/wrapIndexBuffer (BufferUtils/createIntBuffer indices)))
+    (field! "indexStride" (int 12))
+    (field! "numTriangles" (int (quot (alength indices) 3)))
+    (.invoke ^Method (private-member IndexedMesh "createMesh" []) im (object-array 0))
+    im))
 
 (defn gimpact-shape
   "A GImpact (moving triangle mesh) collision shape of `mesh`."
   ^CollisionShape [^Mesh mesh]
-  (GImpactCollisionShape. ^"[Lcom.jme3.scene.Mesh;" (into-array Mesh [mesh])))
+  (GImpactCollisionShape. ^"[Lcom.jme3.bullet.collision.shapes.infos.IndexedMesh;"
+                          (into-array IndexedMesh [(indexed-mesh mesh)])))
+
+(defn mesh-shape
+  "A static triangle mesh (BVH, quantized as jme3-jbullet's) collision
+  shape of `mesh`."
+  ^CollisionShape [^Mesh mesh]
+  (MeshCollisionShape. true ^"[Lcom.jme3.bullet.collision.shapes.infos.IndexedMesh;"
+                       (into-array IndexedMesh [(indexed-mesh mesh)])))
 
 (defn orientation
   "How the engine body `rb` is turned now, [x y z w], jME's axes."
@@ -121,14 +178,59 @@
   [^PhysicsRigidBody body]
   (.setInverseInertiaLocal body (Vector3f.)))
 
+(def ^:private ^Method activation-state!
+  "PhysicsCollisionObject's own setActivationState(long id, int state),
+  which Minie keeps protected."
+  (private-member PhysicsCollisionObject "setActivationState" [Long/TYPE Integer/TYPE]))
+
 (defn set-sleep!
   "`:start-asleep` (it sleeps until something wakes it) or `:never`
-  (it never sleeps) for `body`. Minie cannot put a body to sleep at the
-  start; it sleeps as soon as it is still, which is as near as it gets."
+  (it never sleeps) for `body`. Minie's setEnableSleep knows only
+  ACTIVE_TAG and DISABLE_DEACTIVATION; a body starts asleep as Blender
+  starts it, in Bullet's WANTS_DEACTIVATION (3), set natively."
   [^PhysicsRigidBody body how]
   (case how
-    :start-asleep (.setEnableSleep body true)
+    :start-asleep (.invoke activation-state! nil (object-array [(.nativeId body) (int 3)]))
     :never (.setEnableSleep body false)))
+
+(def ^:private blender-group
+  "The collision group of every body in Blender's collision collections
+  (see `set-collections!`): the bit above Blender's twenty."
+  (bit-shift-left 1 20))
+
+(defn set-collections!
+  "Put `body` in Blender's collision collections `mask` (20 bits): it
+  collides with a body that shares one of them, and with what is in
+  jME's first collision group (a floor, say) when `mask` has the
+  first. Minie wants a body's group to be one bit, so the body is in
+  `blender-group` and collides with `mask` and that group; the space's
+  listener (see `configure-space!`) then lets two such bodies collide
+  only when their masks meet."
+  [^PhysicsCollisionObject body mask]
+  (let [m (bit-and (long mask) 0xfffff)]
+    (.setCollisionGroup body (int blender-group))
+    (.setCollideWithGroups body (int (bit-or m blender-group)))))
+
+(def ^:private collections-listener
+  "Whether two bodies of `blender-group` collide: when their
+  collections (the collide-with masks less that group) meet. Any other
+  pair has passed jME's test of groups already."
+  (reify PhysicsCollisionGroupListener
+    (collide [_ a b]
+      (or (not= (.getCollisionGroup a) (.getCollisionGroup b))
+          (not (zero? (bit-and (.getCollideWithGroups a) (.getCollideWithGroups b) 0xfffff)))))))
+
+(defn breaking-threshold!
+  "Make `joint` breakable at `threshold`: native Bullet clamps each of
+  its rows at it and disables it when one reaches it."
+  [^Constraint joint threshold]
+  (.setBreakingImpulseThreshold joint (float threshold)))
+
+(defn broken?
+  "Whether the breakable `joint` broke in the last substep: native
+  Bullet disabled it."
+  [^Constraint joint _threshold]
+  (not (.isEnabled joint)))
 
 (defn hull-points
   "The points of `shape`'s hull (or of its first child's, for a compound
@@ -209,6 +311,11 @@
   [^Constraint joint collide?]
   (.setCollisionBetweenLinkedBodies joint (boolean collide?))
   joint)
+
+(defn collide-linked?
+  "Do the two bodies `joint` links collide with each other?"
+  [^Constraint joint]
+  (.isCollisionBetweenLinkedBodies joint))
 
 (defn pivots
   "[pivot-a pivot-b] of `joint`: its point in each body's frame."
@@ -296,9 +403,11 @@
 
 (defn configure-space!
   "Set `space` up as cortex simulates: split impulse off, as in jBullet;
-  hinges limited speculatively."
+  hinges limited speculatively; Blender's collision collections decide
+  which of its bodies collide (see `set-collections!`)."
   ^PhysicsSpace [^PhysicsSpace space]
   (.setSplitImpulseEnabled ^SolverInfo (.getSolverInfo space) false)
+  (.addCollisionGroupListener space collections-listener (int blender-group))
   (.addTickListener space (reify com.jme3.bullet.PhysicsTickListener
                             (prePhysicsTick [_ s _] (speculate! s))
                             (physicsTick [_ _ _])))
