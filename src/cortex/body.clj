@@ -652,9 +652,7 @@
 ;; rotation is free.
 (defmethod joint-dispatch :point
   [_ control-a control-b pivot-a pivot-b _]
-  (doto (SixDofJoint. control-a control-b pivot-a pivot-b false)
-    (.setLinearLowerLimit Vector3f/ZERO)
-    (.setLinearUpperLimit Vector3f/ZERO)))
+  (engine/six-dof-joint control-a control-b pivot-a pivot-b nil nil nil))
 
 (def common-joint-keys
   "The keys every joint description may have."
@@ -758,12 +756,8 @@
       (throw (angle-error (str "cone " k) (get constraints k) "[0, pi]")))
     (let [[^Matrix3f turn [t y z]] (cone-limits xz xy twist)
           frame (.mult rotation turn)]
-      (doto (SixDofJoint. control-a control-b pivot-a pivot-b
-                          (body-frame control-a frame) (body-frame control-b frame) true)
-        (.setLinearLowerLimit Vector3f/ZERO)
-        (.setLinearUpperLimit Vector3f/ZERO)
-        (.setAngularLowerLimit (Vector3f. (float (- t)) (float (- y)) (float (- z))))
-        (.setAngularUpperLimit (Vector3f. (float t) (float y) (float z)))))))
+      (engine/six-dof-joint control-a control-b pivot-a pivot-b
+                            (body-frame control-a frame) (body-frame control-b frame) [t y z]))))
 
 (defmethod joint-dispatch :spring
   [constraints control-a control-b pivot-a pivot-b ^Matrix3f rotation]

@@ -64,7 +64,9 @@
                     (#'main/show-offscreen! (assoc (main/plan ["test/fixtures/designer/quadruped.blend"
                                                                "-s" "0.5" "-o" out "-r" "160x120"] false)
                                                    :record? true)))]
-      (is (re-find #"hip-front-r\s+cone\s+SixDofJoint" printed))
+      (is (re-find (re-pattern (str "hip-front-r\\s+cone\\s+"
+                                    (.getSimpleName ^Class cortex.engine/six-dof-class)))
+                   printed))
       (is (re-find #"largest joint gap 0\.0[0-9]+; (still moving after|at rest from) " printed))
       (is (= 30 (count (render/frames-in out)))))))
 

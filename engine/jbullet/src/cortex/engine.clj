@@ -274,6 +274,30 @@
   (.setLimit joint (float low) (float high))
   joint)
 
+(def six-dof-class
+  "The class of the joint `six-dof-joint` makes."
+  com.jme3.bullet.joints.SixDofJoint)
+
+(defn six-dof-joint
+  "A joint between the bodies of `control-a` and `control-b` at
+  `pivot-a`, `pivot-b` whose translation is locked and whose three
+  angles (Euler XYZ in the joint's frame) keep within [-t t], [-y y],
+  [-z z] of `limits` [t y z], or turn freely when `limits` is nil; the
+  joint's frame is `frame-a`, `frame-b` (Matrix3f, each in its body's
+  frame), or the bodies' own when nil. Here jBullet's SixDofJoint."
+  [control-a control-b ^Vector3f pivot-a ^Vector3f pivot-b frame-a frame-b limits]
+  (let [j (if frame-a
+            (com.jme3.bullet.joints.SixDofJoint. ^PhysicsRigidBody control-a ^PhysicsRigidBody control-b
+                                                 pivot-a pivot-b ^Matrix3f frame-a ^Matrix3f frame-b true)
+            (com.jme3.bullet.joints.SixDofJoint. ^PhysicsRigidBody control-a ^PhysicsRigidBody control-b
+                                                 pivot-a pivot-b false))]
+    (.setLinearLowerLimit j Vector3f/ZERO)
+    (.setLinearUpperLimit j Vector3f/ZERO)
+    (when-let [[t y z] limits]
+      (.setAngularLowerLimit j (Vector3f. (float (- (double t))) (float (- (double y))) (float (- (double z)))))
+      (.setAngularUpperLimit j (Vector3f. (float t) (float y) (float z))))
+    j))
+
 (defn spring-joint
   "A spring joint (see the body chapter): jBullet has none, so an error
   that says what to do instead."

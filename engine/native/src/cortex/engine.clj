@@ -374,6 +374,39 @@
       (aset state 2 angle)
       (aset state 3 1.0))))
 
+(def six-dof-class
+  "The class of the joint `six-dof-joint` makes."
+  com.jme3.bullet.joints.New6Dof)
+
+(defn six-dof-joint
+  "A joint between the bodies of `control-a` and `control-b` at
+  `pivot-a`, `pivot-b` whose translation is locked and whose three
+  angles (Euler XYZ in the joint's frame) keep within [-t t], [-y y],
+  [-z z] of `limits` [t y z], or turn freely when `limits` is nil; the
+  joint's frame is `frame-a`, `frame-b` (Matrix3f, each in its body's
+  frame), or the bodies' own when nil. Here a New6Dof (Bullet's
+  btGeneric6DofSpring2Constraint), whose rows hold a locked axis from
+  the first step: Bullet's older 6-DOF (Minie's SixDofJoint) makes a
+  locked axis's rows only once it is off, so a joint lets go for a step
+  whenever one of its bodies is stopped dead (the hand's thumb opened
+  0.073 as its palm hit the floor)."
+  [control-a control-b ^Vector3f pivot-a ^Vector3f pivot-b frame-a frame-b limits]
+  (let [j (com.jme3.bullet.joints.New6Dof. ^PhysicsRigidBody control-a ^PhysicsRigidBody control-b
+                                            pivot-a pivot-b
+                                            ^Matrix3f (or frame-a (Matrix3f.)) ^Matrix3f (or frame-b (Matrix3f.))
+                                            com.jme3.bullet.RotationOrder/XYZ)
+        tm (.getTranslationMotor j)]
+    (.set tm MotorParam/LowerLimit (Vector3f.))
+    (.set tm MotorParam/UpperLimit (Vector3f.))
+    (doseq [[i lim] (map-indexed vector (or limits [nil nil nil]))
+            :let [m (.getRotationMotor j (int i))]]
+      (if lim
+        (do (.set m MotorParam/LowerLimit (float (- (double lim))))
+            (.set m MotorParam/UpperLimit (float lim)))
+        (do (.set m MotorParam/LowerLimit (float 1))
+            (.set m MotorParam/UpperLimit (float -1)))))
+    j))
+
 (defn spring-joint
   "A spring joint (see the body chapter): a New6Dof (Bullet's
   btGeneric6DofSpring2Constraint) between the bodies of `control-a` and
@@ -406,7 +439,11 @@
   hinges limited speculatively; Blender's collision collections decide
   which of its bodies collide (see `set-collections!`)."
   ^PhysicsSpace [^PhysicsSpace space]
-  (.setSplitImpulseEnabled ^SolverInfo (.getSolverInfo space) false)
+  (doto ^SolverInfo (.getSolverInfo space)
+    (.setSplitImpulseEnabled false)
+    ;; jBullet's solver mode: constraints in a (seeded) random order,
+    ;; warm starting (and SIMD, native Bullet's own default)
+    (.setMode (int (bit-or 1 4 256))))
   (.addCollisionGroupListener space collections-listener (int blender-group))
   (.addTickListener space (reify com.jme3.bullet.PhysicsTickListener
                             (prePhysicsTick [_ s _] (speculate! s))
