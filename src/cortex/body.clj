@@ -278,7 +278,7 @@
   {:strict? true
    :tolerance nil
    :angular-damping 0.5
-   :sleeping-thresholds [0.8 2.0]
+   :sleeping-thresholds [0.8 3.0]
    :mass-properties :mesh})
 
 (defn physical!

@@ -71,9 +71,9 @@
   "Whether `creature` on `friction` meets the rest rule today (see the
   table above)."
   [creature friction]
-  (or (#{"hand" "chain-100"} creature)
+  (or (#{"hand" "chain-100" "quadruped"} creature)
       (and (= "humanoid" creature) (not= friction 0.5))
-      (and (= "quadruped" creature) (= friction 0.25))))
+      (and (= "heavy-hands" creature) (= friction 0.5))))
 
 (defn- falls-clean?
   "Whether `creature` keeps under the speed of a clean fall today (see
