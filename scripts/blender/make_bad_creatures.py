@@ -51,7 +51,7 @@ def main():
         ("evil-joint", dict(joint_spec='{:type :point :x (spit "%s" "evaluated")}' % EVIL_PATH)),
         ("read-eval", dict(joint_spec='#=(clojure.core/spit "%s" "evaluated")' % EVIL_PATH)),
         ("bad-mass", dict(joint_spec="{:type :point}", mass_2="heavy")),
-        ("unknown-type", dict(joint_spec="{:type :spring :stiffness 3}")),
+        ("unknown-type", dict(joint_spec="{:type :rubber :stiffness 3}")),
     ]
     for name, kw in cases:
         worm(**kw)

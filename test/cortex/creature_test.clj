@@ -154,7 +154,7 @@
            ["evil-joint" #"joint \"worm-joint\": not an allowed operation: \(spit "]
            ["read-eval" #"joint \"worm-joint\": cannot read \"#=\(clojure.core/spit"]
            ["bad-mass" #"object \"worm-2\": mass must be a non-negative number, not \"heavy\""]
-           ["unknown-type" #"joint \"worm-joint\": unknown joint type :spring; known types: "]]]
+           ["unknown-type" #"joint \"worm-joint\": unknown joint type :rubber; known types: "]]]
     (let [path (str "test/fixtures/creatures/" file ".blend")
           message (try (body/body! (util/load-blender-model path)) nil
                        (catch clojure.lang.ExceptionInfo e (ex-message e)))]
