@@ -284,8 +284,10 @@
   "jBullet frees a 6-DOF angle whose lower limit equals its upper one
   (its RotationalLimitMotor tests lo >= hi); a limit that Blender gives
   as one value is widened by this much (radians) on each side, so it
-  locks."
-  1e-4)
+  locks. Native Bullet's joint locks equal limits, and from the first
+  step, which a widened angle would not be held in: there the margin
+  is 0 (see MeteredSixDofJoint in org/engine.org)."
+  MeteredSixDofJoint/ANGLE_LOCK_MARGIN)
 
 (def ^:private axes ["x" "y" "z"])
 
@@ -313,10 +315,11 @@
     [(util/vec3 (map first ls)) (util/vec3 (map second ls))]))
 
 (defn- six-dof
-  "A jME SixDofJoint in the frames of `ctx`, linear limits `lin` and
-  angular limits `ang` (per axis [lower upper], nil for free), measured
-  in body A's frame as Blender's constraints are."
-  ^SixDofJoint [{:keys [a b pivot-a pivot-b rot-a rot-b]} lin ang]
+  "A 6-DOF joint (MeteredSixDofJoint: jME's SixDofJoint on jBullet, a
+  New6Dof on native Bullet) in the frames of `ctx`, linear limits `lin`
+  and angular limits `ang` (per axis [lower upper], nil for free),
+  measured in body A's frame as Blender's constraints are."
+  ^MeteredSixDofJoint [{:keys [a b pivot-a pivot-b rot-a rot-b]} lin ang]
   (let [[llo lhi] (six-dof-limits lin false)
         [alo ahi] (six-dof-limits ang true)]
     (doto (MeteredSixDofJoint. a b pivot-a pivot-b rot-a rot-b true)
@@ -678,7 +681,8 @@
               (.setSolverNumIterations s (int iterations))
               (engine/blender-solver-order! s)
               (.setAccuracy s (float step))
-              (.setMaxSubSteps s (int substeps))))
+              (.setMaxSubSteps s (int substeps))
+              (engine/blender-solver-order! s)))
           (.addTickListener s this)))
       (getPhysicsSpace [_] @space)
       (setEnabled [_ on] (reset! enabled (boolean on)))

@@ -12,10 +12,10 @@
             [cortex.world :as world])
   (:import (com.jme3.app.state AbstractAppState)
            (com.jme3.bullet.control RigidBodyControl)
-           (com.jme3.bullet.joints SixDofJoint SliderJoint)
+           (com.jme3.bullet.joints SliderJoint)
            (com.jme3.math Quaternion Vector3f)
            (com.jme3.scene Node Spatial)
-           (cortex FrameHingeJoint)))
+           (cortex FrameHingeJoint MeteredSixDofJoint)))
 
 (set! *warn-on-reflection* true)
 
@@ -112,8 +112,8 @@
         (is (= (bp/world-settings root) (bp/world-settings copy)))))))
 
 (def joint-classes
-  {"FIXED" SixDofJoint "POINT" SixDofJoint "GENERIC" SixDofJoint "GENERIC_SPRING" SixDofJoint
-   "MOTOR" SixDofJoint "HINGE" FrameHingeJoint "SLIDER" SliderJoint "PISTON" SliderJoint})
+  {"FIXED" MeteredSixDofJoint "POINT" MeteredSixDofJoint "GENERIC" MeteredSixDofJoint
+   "GENERIC_SPRING" MeteredSixDofJoint "MOTOR" MeteredSixDofJoint "HINGE" FrameHingeJoint "SLIDER" SliderJoint "PISTON" SliderJoint})
 
 (def shape-classes
   {"BOX" "BoxCollisionShape" "SPHERE" "SphereCollisionShape" "CAPSULE" "CapsuleCollisionShape"
@@ -160,7 +160,7 @@
                   (is (same? (get rbc "limit_lin_x_lower") (.getLowerLinLimit ^SliderJoint joint)))
                   (is (same? (get rbc "limit_lin_x_upper") (.getUpperLinLimit ^SliderJoint joint))))
                 (when (= "MOTOR" type)
-                  (let [m (.getRotationalLimitMotor ^SixDofJoint joint 0)]
+                  (let [m (.getRotationalLimitMotor ^MeteredSixDofJoint joint 0)]
                     (is (= (get rbc "use_motor_ang") (.isEnableMotor m)))
                     (is (same? (get rbc "motor_ang_target_velocity") (.getTargetVelocity m)))
                     (is (same? (get rbc "motor_ang_max_impulse") (.getMaxMotorForce m)))))

@@ -32,6 +32,12 @@ import com.jme3.math.Vector3f;
  */
 public class MeteredSixDofJoint extends SixDofJoint {
     /**
+     * How much the Physics tab widens a locked angle on each side
+     * (radians): jBullet frees an angle whose limits are equal.
+     */
+    public static final double ANGLE_LOCK_MARGIN = 1e-4;
+
+    /**
      * The error reduction of Bullet 2.8's constraint rows: the solver's
      * btContactSolverInfo.m_erp, 0.2, which Blender never changes.
      */

@@ -155,6 +155,15 @@
   [^PhysicsJoint joint threshold]
   (>= (.getAppliedImpulse joint) (double threshold)))
 
+(defn blender-solver-order!
+  "Have `space`'s solver visit constraints as Blender's world does, as
+  far as the engine goes: here nothing changes. jBullet's solver keeps
+  its random order, in which the Physics tab's 6-DOF joint, solving its
+  own rows (see MeteredSixDofJoint), follows Blender's rig-chain within
+  2%."
+  [_space]
+  nil)
+
 (defn hull-points
   "The points of `shape`'s hull (or of its first child's, for a compound
   shape), [[x y z] ...], or nil when it is no hull."
