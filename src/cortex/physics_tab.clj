@@ -679,7 +679,6 @@
             (let [{:keys [substeps step iterations]} settings]
               (.setGravity s (util/vec3 (:gravity settings)))
               (.setSolverNumIterations s (int iterations))
-              (engine/blender-solver-order! s)
               (.setAccuracy s (float step))
               (.setMaxSubSteps s (int substeps))
               (engine/blender-solver-order! s)))

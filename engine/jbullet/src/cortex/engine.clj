@@ -283,13 +283,6 @@
   (.setLimit joint (float low) (float high))
   joint)
 
-(defn blender-solver-order!
-  "Give `space` the order in which Blender's Bullet visits constraints,
-  for a Physics-tab world: here nothing (jBullet's random order stays;
-  the Physics tab's comparisons with Blender were measured with it)."
-  [space]
-  space)
-
 (def six-dof-class
   "The class of the joint `six-dof-joint` makes."
   com.jme3.bullet.joints.SixDofJoint)

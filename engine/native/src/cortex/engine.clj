@@ -384,16 +384,6 @@
       (aset state 2 angle)
       (aset state 3 1.0))))
 
-(defn blender-solver-order!
-  "Give `space` the order in which Blender's Bullet visits constraints,
-  for a Physics-tab world: Bullet's default, fixed (cortex's own
-  creatures get jBullet's random order, see `configure-space!`; in the
-  fixed order the rig-chain fixture follows Blender within 2%, in the
-  random one 4.8% off at 1 s)."
-  [^PhysicsSpace space]
-  (.setMode ^SolverInfo (.getSolverInfo space) (int (bit-or 4 256)))
-  space)
-
 (def six-dof-class
   "The class of the joint `six-dof-joint` makes."
   com.jme3.bullet.joints.New6Dof)
