@@ -7,6 +7,8 @@
   (:require [clojure.java.io :as io]
             [clojure.string :as str]
             [cortex.body :as body]
+            [cortex.engine]
+            [cortex.render :as render]
             [cortex.sim :as sim]
             [cortex.util :as util])
   (:import (java.lang.management ManagementFactory)
@@ -34,7 +36,45 @@
     (let [t0 (cpu-ns)]
       (dotimes [_ steps] (sim/step! s))
       (let [t (/ (- (cpu-ns) t0) 1e9)]
-        [(/ steps t) (sim/observe s #{:segments}) @fastest]))))
+        [(/ steps t) (sim/observe s #{:segments}) @fastest s]))))
+
+(defn- picture!
+  "Draw simulation `s` as it is now, offscreen, from the side (as
+  `cortex.sim/world` places its camera), into the PNG `file`; `file`."
+  [s file]
+  ;; creatures made in code (the chain) have no material to draw with
+  (.depthFirstTraversal
+   ^com.jme3.scene.Node (:root s)
+   (reify com.jme3.scene.SceneGraphVisitor
+     (visit [_ spatial]
+       (when (and (instance? com.jme3.scene.Geometry spatial)
+                  (nil? (.getMaterial ^com.jme3.scene.Geometry spatial)))
+         (.setMaterial ^com.jme3.scene.Geometry spatial
+                       (doto (com.jme3.material.Material. (util/asset-manager)
+                                                          "Common/MatDefs/Light/Lighting.j3md")
+                         (.setBoolean "UseMaterialColors" true)
+                         (.setColor "Diffuse" com.jme3.math.ColorRGBA/Orange)
+                         (.setColor "Ambient" com.jme3.math.ColorRGBA/Brown)))))))
+  (let [dir (str (java.nio.file.Files/createTempDirectory
+                  "cortex-compare" (make-array java.nio.file.attribute.FileAttribute 0)))
+        ;; where the creature lies now (its Geometries brought up to date
+        ;; from its bodies before the world takes the scene)
+        ^com.jme3.bounding.BoundingBox b (do (sim/sync! s)
+                                             (.getWorldBound ^com.jme3.scene.Node (:creature s)))
+        c (.getCenter b)
+        r (max 1.2 (.getXExtent b) (.getZExtent b))
+        frame-on (fn [^com.jme3.app.SimpleApplication w]
+                   ;; a sky, and the camera as far off as the creature is long
+                   (.setBackgroundColor (.getViewPort w) (com.jme3.math.ColorRGBA. 0.55 0.7 0.9 1))
+                   (doto (.getCamera w)
+                     (.setLocation (.add c (com.jme3.math.Vector3f. (* 0.6 r) (* 0.9 r) (* 2.2 r))))
+                     (.lookAt c com.jme3.math.Vector3f/UNIT_Y)))
+        w (sim/world s (constantly nil) frame-on)]
+    (render/record! w dir {:progress nil})
+    (render/run-offscreen! w 3 {:size [480 360]})
+    (io/make-parents file)
+    (io/copy (io/file dir "frame-000003.png") (io/file file))
+    file))
 
 (defn- median [xs] (nth (sort xs) (quot (count xs) 2)))
 
@@ -47,7 +87,9 @@
         h (vec (repeatedly runs #(timed-run humanoid floor-z 1000 10000)))
         c (vec (repeatedly runs #(timed-run chain -0.2 1000 10000)))
         height (fn [obs seg floor] (- (double (second (get-in obs [:segments seg :position]))) floor))]
-    {:engine "cortex (jBullet)"
+    {:engine (str "cortex (" ({:jbullet "jBullet" :native "native Bullet"} cortex.engine/name) ")")
+     :image (picture! (nth (peek h) 3) (str "out/compare/cortex-humanoid-" (name cortex.engine/name) ".png"))
+     :chain_image (picture! (nth (peek c) 3) (str "out/compare/cortex-chain-" (name cortex.engine/name) ".png"))
      :settings "10 solver iterations, cones as 6-DOF, mesh mass properties, sleeping off"
      :humanoid {:steps_per_s (median (map first h))
                 :final_torso_height (height (second (peek h)) "torso" floor-z)

@@ -575,7 +575,9 @@ def main():
     ap.add_argument("--chain-segments", type=int, default=100)
     ap.add_argument("--no-chain", action="store_true", help="only the humanoid")
     ap.add_argument("--quick", action="store_true", help="1 run, 200 warm-up, 1,000 timed steps")
-    ap.add_argument("--cortex-json", help="cortex's numbers (see the docstring for the format)")
+    ap.add_argument("--cortex-json", action="append", default=[],
+                    help="cortex's numbers (see the docstring for the format); give it once "
+                         "per engine to put both in the tables")
     ap.add_argument("--out", default=os.path.join(REPO, "out", "compare"),
                     help="folder for humanoid_compare.png and .json (default out/compare)")
     ap.add_argument("--check-fixture", action="store_true",
@@ -609,10 +611,10 @@ def main():
         return 1 if fixture_problems else 0
 
     notes = divergence_notes(args)
-    cortex = None
-    if args.cortex_json:
-        with open(args.cortex_json) as f:
-            cortex = json.load(f)
+    cortexes = []
+    for path in args.cortex_json:
+        with open(path) as f:
+            cortexes.append(json.load(f))
 
     cases = ["humanoid"] + ([] if args.no_chain else ["chain"])
     engines = [MujocoRun, PybulletRun]
@@ -653,7 +655,9 @@ def main():
             s["engine"] = cls.engine
             s["settings"] = last[(case, cls.engine)].settings
             rows.append(s)
-        if cortex and case in cortex:
+        for cortex in cortexes:
+            if case not in cortex:
+                continue
             c = cortex[case]
             rows.append({"engine": cortex.get("engine", "cortex"),
                          "steps_per_s": c.get("steps_per_s"), "max_speed": c.get("max_speed"),
@@ -687,7 +691,9 @@ def main():
                                "torso" if case == "humanoid" else "mean height",
                                s["final_height"], s["steps_per_s"]),
                             s["settings"]], img))
-        if cortex and case in cortex:
+        for cortex in cortexes:
+            if case not in cortex:
+                continue
             img = None
             key = "image" if case == "humanoid" else "chain_image"
             if cortex.get(key) and os.path.exists(cortex[key]):

@@ -256,7 +256,10 @@
                   (fn [^SimpleApplication w]
                     (.attachChild (.getRootNode w) root)
                     (util/light-up-everything w)
-                    (.updateGeometricState root)
+                    ;; the whole scene, from its root: brought up to date from
+                    ;; the simulation's Node alone, the lights above would never
+                    ;; reach the creature (its light list would be marked fresh)
+                    (.updateGeometricState (.getRootNode w))
                     (let [c (.getCenter (.getWorldBound ^Node creature))]
                       (doto (.getCamera w)
                         (.setLocation (.add c (Vector3f. 0 3 9)))

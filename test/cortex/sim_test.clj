@@ -150,6 +150,15 @@
     (dotimes [_ 30] (sim/step! plain (crawl-gait (sim/sim-time plain))))
     (is (= 30 (count (render/frames-in dir))))
     (is (pos? (.length (io/file dir "frame-000030.png"))))
+    (testing "the worm is lit: its green shows (unlit, it was black)"
+      (let [^java.awt.image.BufferedImage img (javax.imageio.ImageIO/read (io/file dir "frame-000030.png"))
+            green (count (for [x (range (.getWidth img)) y (range (.getHeight img))
+                               :let [rgb (.getRGB img x y)
+                                     r (bit-and (bit-shift-right rgb 16) 255)
+                                     g (bit-and (bit-shift-right rgb 8) 255)]
+                               :when (and (> g 80) (> g (+ r 40)))]
+                           1))]
+        (is (> green 500) (str green " green pixels"))))
     (is (= 30 (sim/steps recorded)))
     (is (= (sim/observe plain) (sim/observe recorded)))))
 
