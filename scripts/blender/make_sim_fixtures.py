@@ -20,6 +20,17 @@ rig-chain     what a rigging add-on makes of an arm: five bone-shaped bodies
               GENERIC constraint turned as the bone, translation locked,
               angles limited ([-0.3, 0.3] X, [-0.1, 0.1] Y, [-0.5, 0.5] Z),
               Disable Collisions on; the first hangs from a passive `anchor`.
+kick          a rigging add-on's ragdoll-like arm whose limits were built from
+              another pose than the one the bones start in: `bone-1` hangs
+              from a passive `anchor`, `bone-2` to `bone-5` are a ring (a
+              parallelogram, tilted) hanging from it, each bone a long thin
+              box joined to its parent at its head by a GENERIC constraint
+              turned as the bone, translation locked, angles limited, most of
+              them so that the start pose lies 0.1 to 0.35 radians outside
+              (0 is not in [0.2, 0.5] ...); `ring` closes the ring (bone-5's
+              tail to bone-1's, limits around the start).  Disable
+              Collisions on every constraint, and every body in a collision
+              collection of its own: nothing collides.
 collisions    boxes in collision collections: `a` (collection 1) lands on the
               ground (collections 1 and 2); `b` (collection 3 only) falls
               through it; `c` (collection 2) lands on `d` (collection 2,
@@ -184,6 +195,50 @@ def rig_chain():
         parent = seg
 
 
+def kick():
+    from mathutils import Vector
+    ground()
+    anchor = box("anchor", (0.2, 0.2, 0.2), (0, 0, 4.7), kind="PASSIVE")
+    # each body in a collision collection of its own: nothing collides
+    anchor.rigid_body.collision_collections[0] = False
+    anchor.rigid_body.collision_collections[19] = True
+    d = Vector((0.8, 0.2, -0.56)).normalized()
+    e = Vector((-0.3, 0.5, -0.8)).normalized()
+    # bone: direction, angular limits (X, Y, Z) of the joint at its head
+    bones = [((0.2, 0.1, -0.97), [(0.2, 0.5), (-0.1, 0.1), (-0.5, 0.5)]),
+             (tuple(d), [(-0.6, -0.3), (-0.1, 0.1), (0.15, 0.5)]),
+             (tuple(e), [(-0.3, 0.3), (0.1, 0.3), (-0.5, 0.5)]),
+             (tuple(-d), [(0.35, 0.7), (-0.1, 0.1), (-0.6, -0.25)]),
+             (tuple(-e), [(-0.3, 0.3), (-0.1, 0.1), (0.3, 0.6)])]
+    length = 0.6
+    head = Vector((0.0, 0.0, 4.5))
+    parent = anchor
+    segs = []
+    for i, (direction, limits) in enumerate(bones):
+        v = Vector(direction).normalized()
+        tail = head + length * v
+        rot = Vector((0, 1, 0)).rotation_difference(v).to_euler()
+        seg = box("bone-%d" % (i + 1), (0.06, length / 2 - 0.02, 0.05), (head + tail) / 2,
+                  rotation=rot, mass=1.0)
+        seg.rigid_body.collision_collections[0] = False
+        seg.rigid_body.collision_collections[i + 1] = True
+        c = constraint("joint-%d" % (i + 1), "GENERIC", parent, seg, tuple(head), rotation=rot)
+        lock_translation(c)
+        limit_angles(c, limits)
+        c.disable_collisions = True
+        segs.append((seg, tail, rot))
+        # bone-2 hangs from bone-1's tail; bone-3 to 5 follow each other
+        parent = seg
+        head = tail
+    b1, t1, _ = segs[0]
+    b5, t5, r5 = segs[4]
+    assert (t5 - t1).length < 1e-5
+    c = constraint("ring", "GENERIC", b1, b5, tuple(t1), rotation=r5)
+    lock_translation(c)
+    limit_angles(c, [(-0.4, 0.4), (-0.2, 0.2), (-0.6, 0.6)])
+    c.disable_collisions = True
+
+
 def collisions():
     ground(groups={0, 1})
 
@@ -272,7 +327,7 @@ def substeps():
         prev = bar
 
 
-CASES = [("ragdoll", ragdoll), ("rig-chain", rig_chain), ("collisions", collisions),
+CASES = [("ragdoll", ragdoll), ("rig-chain", rig_chain), ("kick", kick), ("collisions", collisions),
          ("breaking", breaking), ("outside", outside), ("deactivation", deactivation),
          ("substeps", substeps)]
 

@@ -37,7 +37,8 @@ oracle() {
     if [ $# -gt 0 ] && ! echo " $* " | grep -q " $name "; then continue; fi
     # simulate_physics.py takes its arguments after "--" under both the
     # Blender executable and a plain python with the bpy module.
-    "$py" "$SCRIPT" -- "$f" "$OUT/${name}_sim-$version.json" --times 0.5,1,2
+    first=; [ "$name" = kick ] && first=--first-frame
+    "$py" "$SCRIPT" -- "$f" "$OUT/${name}_sim-$version.json" --times 0.5,1,2 $first
   done
 }
 

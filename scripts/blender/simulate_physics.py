@@ -26,6 +26,14 @@ OUT.json: {"blender_version", "fps", "times": [0, t...], "frames": [f0, ...],
                      "substeps_per_frame", "solver_iterations", "time_scale",
                      "gravity"}}
 Each time t is frame f0 + round(t * fps), played through from f0.
+
+With --first-frame as well, OUT.json also has "first_frame": {"substeps",
+"step" (seconds), "objects": {name: [matrix_world after each substep of
+the first frame, the start first]}}: the file played again at
+substeps_per_frame times its frame rate, one substep a frame (the same
+steps of the same length, so the same positions), for the speeds the
+bodies leave each substep with (Blender's Python gives no velocities;
+Bullet moves a body by its velocity times the step).
 """
 
 import json
@@ -38,7 +46,30 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import dump  # noqa: E402
 
 
-def at_times(path, out_path, times):
+def first_frame(path):
+    """Each rigid body's matrix_world after each substep of the first frame."""
+    bpy.ops.wm.open_mainfile(filepath=os.path.abspath(path), load_ui=False)
+    scene = bpy.context.scene
+    w = scene.rigidbody_world
+    n = w.substeps_per_frame
+    fps = scene.render.fps / scene.render.fps_base
+    scene.render.fps = int(round(fps * n))
+    scene.render.fps_base = 1.0
+    w.substeps_per_frame = 1
+    start = scene.frame_start
+    scene.frame_end = max(scene.frame_end, start + n)
+    w.point_cache.frame_end = scene.frame_end
+    bodies = sorted(o.name for o in scene.objects if o.rigid_body is not None)
+    objects = {b: [] for b in bodies}
+    for f in range(start, start + n + 1):
+        scene.frame_set(f)
+        depsgraph = bpy.context.evaluated_depsgraph_get()
+        for b in bodies:
+            objects[b].append(dump._matrix(scene.objects[b].evaluated_get(depsgraph).matrix_world))
+    return {"substeps": n, "step": w.time_scale / (fps * n), "objects": objects}
+
+
+def at_times(path, out_path, times, first=False):
     bpy.ops.wm.open_mainfile(filepath=os.path.abspath(path), load_ui=False)
     scene = bpy.context.scene
     fps = scene.render.fps / scene.render.fps_base
@@ -78,6 +109,8 @@ def at_times(path, out_path, times):
         for n in bodies:
             ob = scene.objects[n].evaluated_get(depsgraph)
             out["objects"][n].append(dump._matrix(ob.matrix_world))
+    if first:
+        out["first_frame"] = first_frame(path)
     with open(out_path, "w", encoding="utf-8") as fh:
         json.dump(out, fh, indent=None, separators=(",", ":"))
         fh.write("\n")
@@ -86,13 +119,16 @@ def at_times(path, out_path, times):
 
 def main():
     args = dump.script_args()
+    first = "--first-frame" in args
+    if first:
+        args.remove("--first-frame")
     if "--times" in args:
         i = args.index("--times")
         times = [0.0] + [float(t) for t in args[i + 1].split(",")]
         rest = args[:i] + args[i + 2:]
         if len(rest) != 2:
             sys.exit("usage: simulate_physics.py FILE.blend OUT.json --times 0.5,1,2")
-        at_times(rest[0], rest[1], times)
+        at_times(rest[0], rest[1], times, first)
         return
     if len(args) not in (2, 3):
         sys.exit("usage: simulate_physics.py FILE.blend OUT.json [FRAMES]")

@@ -659,13 +659,27 @@
   `simulation-settings`."
   "blender-simulation")
 
+(defn- blender-joint-order
+  "The joints of `joints` (reports of `constraint!`) in the order of
+  `names`, the world's constraints collection, in which Blender adds
+  them to its world; any not in it after them, in name order."
+  [joints names]
+  (let [index (zipmap names (range))]
+    (->> joints
+         (filter :joint)
+         (sort-by (juxt #(get index (:object %) Long/MAX_VALUE) :object))
+         (mapv :joint))))
+
 (defn- simulation-control
   "A physics control that applies `settings` (see `simulation-settings`;
   nil applies none) to the space it joins, and removes each of
   `breakable` ({:object :joint :breaking-threshold}) after the first
   substep in which its applied impulse reaches its threshold, noting
-  it in `broken`, a java.util.Map (object name -> substep)."
-  [settings breakable broken]
+  it in `broken`, a java.util.Map (object name -> substep). Before the
+  first substep it adds `ordered` (joints) to the space again, in that
+  order: Blender's."
+  ([settings breakable broken] (simulation-control settings breakable broken []))
+  ([settings breakable broken ordered]
   (let [space (atom nil)
         enabled (atom true)
         substeps (atom 0)]
@@ -686,14 +700,19 @@
       (getPhysicsSpace [_] @space)
       (setEnabled [_ on] (reset! enabled (boolean on)))
       (isEnabled [_] @enabled)
-      (cloneForSpatial [_ _] (simulation-control settings breakable (ConcurrentHashMap.)))
+      (cloneForSpatial [_ _] (simulation-control settings breakable (ConcurrentHashMap.) ordered))
       (setSpatial [_ _])
       (update [_ _])
       (render [_ _ _])
       (write [_ _])
       (read [_ _])
       com.jme3.bullet.PhysicsTickListener
-      (prePhysicsTick [_ _ _])
+      (prePhysicsTick [_ s _]
+        (when (zero? @substeps)
+          (let [^com.jme3.bullet.PhysicsSpace s s
+                in-space (filter (set (.getJointList s)) ordered)]
+            (doseq [^PhysicsJoint j in-space] (.remove s j))
+            (doseq [^PhysicsJoint j in-space] (.add s j)))))
       (physicsTick [_ s _]
         (let [n (swap! substeps inc)]
           (when @enabled
@@ -702,7 +721,7 @@
                                (engine/broken? joint breaking-threshold))]
               (.remove ^com.jme3.bullet.PhysicsSpace s joint)
               (.destroy joint)
-              (.put ^java.util.Map broken object n))))))))
+              (.put ^java.util.Map broken object n)))))))))
 
 (def ^:private ^Logger logger (Logger/getLogger "cortex.physics-tab"))
 
@@ -776,7 +795,8 @@
                                 " BulletAppState's speed to the time scale to follow it")])
                         (mapcat :warnings bodies) (mapcat :warnings joints)))]
      (.addControl creature ^com.jme3.scene.control.Control
-                  (simulation-control settings (vec breakable) broken))
+                  (simulation-control settings (vec breakable) broken
+                                      (blender-joint-order joints (:constraint-objects world))))
      {:creature creature :bodies bodies :joints joints :warnings warnings
       :simulation settings :broken broken})))
 

@@ -242,6 +242,12 @@
       (is (< (relative-median r 1) 0.02))
       (is (< (relative-median r 2) 0.02)))))
 
+(def ^:private kick-limit
+  "How far from Blender's (over the scene's size) =kick= may be at 1 s:
+  2% on native Bullet (it is 0.08%), 3% on jBullet (2.3%; see \"The
+  first-frame kick\")."
+  (if (= :native cortex.engine/name) 0.02 0.03))
+
 (defn- median-against
   "The median, over `r`'s moving bodies, of the distance between
   cortex's body and Blender's simulation `sim` at time index `i`, over
@@ -253,13 +259,14 @@
      (:size r)))
 
 (deftest three-blenders-are-the-judge
-  (doseq [name ["substeps" "ragdoll" "collisions" "outside" "deactivation" "breaking" "rig-chain"]
+  (doseq [name ["substeps" "ragdoll" "collisions" "outside" "deactivation" "breaking" "rig-chain"
+                "kick"]
           version ["4.5" "5.2"]
           :let [sim (read-json (slurp (str folder name "_sim-" version ".json")))
                 r (case-run name)]]
     (testing (str name " against Blender " (get sim "blender_version"))
       (is (= (set (keys (get sim "objects"))) (set (keys (get (blender-sim name) "objects")))))
-      (is (< (median-against r sim 2) 0.02)))))
+      (is (< (median-against r sim 2) (if (= name "kick") kick-limit 0.02))))))
 
 (deftest a-chain-of-bone-shaped-bodies
   (let [r (case-run "rig-chain")
@@ -275,3 +282,51 @@
       (is (< (relative-median r 1) 0.02))
       (is (< (relative-median r 2) 0.02))
       (is (< (relative-median r 3) 0.02)))))
+
+(defn- first-frame-speeds
+  "The speed of each moving body of fixture `name` after each of the
+  first `n` substeps in cortex: {body [m/s ...]}."
+  [name n]
+  (let [c (bp/physics-body! (bp/load-creature (str folder name ".blend")))
+        bodies (filter #(some-> (control c %) .getMass pos?)
+                       (map #(.getName ^Spatial %) (bp/rigid-body-objects c)))
+        out (atom [])
+        listener (reify com.jme3.bullet.PhysicsTickListener
+                   (prePhysicsTick [_ _ _])
+                   (physicsTick [_ _ _]
+                     (swap! out conj (into {} (for [b bodies]
+                                                [b (.length (.getLinearVelocity (control c b)))])))))
+        w (world/world (util/nodify [c]) {}
+                       (fn [w] (.addTickListener (world/physics-space w) listener)) world/no-op)]
+    (world/run-world! w (long (Math/ceil (/ n 4.0))))
+    (into {} (for [b bodies] [b (mapv #(get % b) (take n @out))]))))
+
+(defn- blender-first-frame-speeds
+  "Blender's speed of each moving body after each substep of its first
+  frame ({body [m/s ...]}): how far it moved in the substep, over the
+  substep's length (simulate_physics.py --first-frame)."
+  [sim]
+  (let [{:strs [step objects]} (get sim "first_frame")]
+    (into {} (for [[b ms] objects
+                   :let [ps (mapv place ms)
+                         v (mapv #(/ (dist (ps (inc %)) (ps %)) (double step)) (range (dec (count ps))))]
+                   :when (some pos? v)]
+               [b v]))))
+
+(deftest a-ring-that-starts-outside-its-limits
+  (let [sim (blender-sim "kick")
+        theirs (blender-first-frame-speeds sim)
+        n (get-in sim ["first_frame" "substeps"])
+        ours (first-frame-speeds "kick" n)
+        fastest (fn [speeds] (apply max (mapcat val speeds)))
+        r (case-run "kick")]
+    (testing "Blender's bodies kick too: the start pose is outside the limits"
+      (is (< 5.0 (fastest theirs) 7.0)))
+    (testing "the first substep is Blender's (joints solved in Blender's order)"
+      (doseq [[b v] theirs]
+        (is (< (Math/abs (- (first v) (first (ours b)))) 0.01) b)))
+    (testing "no body in the first frame faster than Blender's fastest + 0.5 m/s"
+      (is (< (fastest ours) (+ (fastest theirs) 0.5))))
+    (is (gaps-hold? r nil))
+    (testing "the ring moves as Blender's does at 1 s (jBullet: within 3%, see the kick)"
+      (is (< (relative-median r 2) kick-limit)))))

@@ -55,6 +55,9 @@ public class MeteredSixDofJoint extends SixDofJoint {
         private final javax.vecmath.Vector3f ra = new javax.vecmath.Vector3f();
         private final javax.vecmath.Vector3f rb = new javax.vecmath.Vector3f();
         private final javax.vecmath.Vector3f tmp = new javax.vecmath.Vector3f();
+        private final javax.vecmath.Vector3f ta = new javax.vecmath.Vector3f();
+        private final javax.vecmath.Vector3f tb = new javax.vecmath.Vector3f();
+        private final javax.vecmath.Matrix3f inertia = new javax.vecmath.Matrix3f();
 
         Metered(RigidBody a, RigidBody b, Transform fa, Transform fb, boolean useA) {
             super(a, b, fa, fb, useA);
@@ -118,13 +121,38 @@ public class MeteredSixDofJoint extends SixDofJoint {
             rbB.applyTorqueImpulse(tmp);
         }
 
-        /** Axis i: locked, limited or free, as Bullet 2.8 holds it. */
+        /**
+         * Is angle j held by a limit in this substep, as Bullet 2.8 counts
+         * it: beyond a range limit, or locked (an angle whose limits are
+         * equal is held always; here it is widened by ANGLE_LOCK_MARGIN)?
+         */
+        private boolean angleHeld(int j) {
+            com.bulletphysics.dynamics.constraintsolver.RotationalLimitMotor m = angularLimits[j];
+            return m.currentLimit != 0
+                || (m.loLimit <= m.hiLimit && m.hiLimit - m.loLimit <= 3 * ANGLE_LOCK_MARGIN);
+        }
+
+        /** (I^-1 t) . t of body `body`, world axes. */
+        private float angularMass(RigidBody body, javax.vecmath.Vector3f t) {
+            body.getInvInertiaTensorWorld(inertia);
+            inertia.transform(t, tmp);
+            return tmp.dot(t);
+        }
+
+        /**
+         * Axis i: locked, limited or free, as Bullet 2.8 holds it, with the
+         * frame offset it uses by default (m_useOffsetForConstraintFrame):
+         * each body is pushed at its own frame's origin (the part of the
+         * lever along the axis, which the offset moves by the mass ratio,
+         * turns nothing), and when one body is static and the two angles
+         * about the other axes are both held, the row turns neither body:
+         * it pushes the moving one's centre of mass only.
+         */
         private void linearRow(int i, float dt) {
             com.bulletphysics.dynamics.constraintsolver.TranslationalLimitMotor l = linearLimits;
             if (!l.isLimited(i)) {
                 return;
             }
-            float inv = 1f / jacLinear[i].getDiagonal();
             (useLinearReferenceFrameA ? calculatedTransformA : calculatedTransformB).basis.getColumn(i, axis);
             tmp.sub(calculatedTransformB.origin, calculatedTransformA.origin);
             float depth = tmp.dot(axis);
@@ -145,18 +173,39 @@ public class MeteredSixDofJoint extends SixDofJoint {
             } else {
                 depth -= min;
             }
-            ra.sub(anchorPos, rbA.getCenterOfMassPosition(tmp));
-            rb.sub(anchorPos, rbB.getCenterOfMassPosition(tmp));
-            rbA.getVelocityInLocalPoint(ra, va);
-            rbB.getVelocityInLocalPoint(rb, vb);
-            va.sub(vb);
+            float imA = rbA.getInvMass();
+            float imB = rbB.getInvMass();
+            float factA = imA + imB > 0f ? imB / (imA + imB) : 0.5f;
+            float factB = 1f - factA;
+            boolean rotAllowed = !(angleHeld((i + 1) % 3) && angleHeld((i + 2) % 3));
+            boolean turnScaled = (imA < 1.1920929E-7f || imB < 1.1920929E-7f) && !rotAllowed;
+            ra.sub(calculatedTransformA.origin, rbA.getCenterOfMassPosition(tmp));
+            rb.sub(calculatedTransformB.origin, rbB.getCenterOfMassPosition(tmp));
+            ta.cross(ra, axis);
+            tb.cross(rb, axis);
+            if (turnScaled) {
+                ta.scale(factA);
+                tb.scale(factB);
+            }
+            float inv = 1f / (imA + imB + angularMass(rbA, ta) + angularMass(rbB, tb));
+            rbA.getLinearVelocity(va);
+            rbB.getLinearVelocity(vb);
+            float vel = axis.dot(va) - axis.dot(vb);
+            rbA.getAngularVelocity(va);
+            rbB.getAngularVelocity(vb);
+            vel += ta.dot(va) - tb.dot(vb);
             float old = VectorUtil.getCoord(l.accumulatedImpulse, i);
-            float sum = clamp(old + (ERP * depth / dt - axis.dot(va)) * inv, lo, hi);
+            float sum = clamp(old + (ERP * depth / dt - vel) * inv, lo, hi);
             VectorUtil.setCoord(l.accumulatedImpulse, i, sum);
-            tmp.scale(sum - old, axis);
-            rbA.applyImpulse(tmp, ra);
+            float p = sum - old;
+            tmp.scale(p, axis);
+            rbA.applyCentralImpulse(tmp);
             tmp.negate();
-            rbB.applyImpulse(tmp, rb);
+            rbB.applyCentralImpulse(tmp);
+            tmp.scale(p, ta);
+            rbA.applyTorqueImpulse(tmp);
+            tmp.scale(-p, tb);
+            rbB.applyTorqueImpulse(tmp);
         }
 
         /** The largest impulse of one row (linear or angular) in the step. */
