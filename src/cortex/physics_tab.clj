@@ -707,7 +707,8 @@
       (write [_ _])
       (read [_ _])
       com.jme3.bullet.PhysicsTickListener
-      (prePhysicsTick [_ s _]
+      (prePhysicsTick [_ s dt]
+        (when settings (engine/gyroscopic-step! s dt))
         (when (zero? @substeps)
           (let [^com.jme3.bullet.PhysicsSpace s s
                 in-space (filter (set (.getJointList s)) ordered)]

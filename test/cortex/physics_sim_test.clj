@@ -244,7 +244,7 @@
 
 (def ^:private kick-limit
   "How far from Blender's (over the scene's size) =kick= may be at 1 s:
-  2% on native Bullet (it is 0.08%), 3% on jBullet (2.3%; see \"The
+  2% on native Bullet (it is 0.08%), 3% on jBullet (2.1%; see \"The
   first-frame kick\")."
   (if (= :native cortex.engine/name) 0.02 0.03))
 

@@ -164,6 +164,56 @@
   [_space]
   nil)
 
+(defn- skew
+  "The cross-product matrix of [x y z], rows."
+  [[x y z]]
+  [[0.0 (- z) y] [z 0.0 (- x)] [(- y) x 0.0]])
+
+(defn- m*v [m v] (mapv (fn [row] (reduce + (map * row v))) m))
+(defn- cross3 [[ax ay az] [bx by bz]]
+  [(- (* ay bz) (* az by)) (- (* az bx) (* ax bz)) (- (* ax by) (* ay bx))])
+
+(defn- solve3
+  "x with m x = b, m a 3x3 (rows), by Cramer's rule."
+  [m b]
+  (let [det (fn [[[a b c] [d e f] [g h i]]]
+              (+ (* a (- (* e i) (* f h))) (- (* b (- (* d i) (* f g)))) (* c (- (* d h) (* e g)))))
+        d (det m)
+        col (fn [k] (mapv (fn [row bi] (assoc row k bi)) m b))]
+    (mapv #(/ (det (col %)) d) (range 3))))
+
+(defn gyroscopic-step!
+  "Before a substep of `dt`: turn each moving body of `space` as Bullet
+  2.8 and later do by default (BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY,
+  which Blender's simulation has and jBullet, Bullet 2.72, lacks): one
+  Newton step of the implicit gyroscopic term, in the body's frame,
+  I w' = I w - dt w' x I w'."
+  [^PhysicsSpace space dt]
+  (let [dt (double dt)]
+    (doseq [^PhysicsRigidBody b (.getRigidBodyList space)
+            :when (pos? (.getMass b))
+            :let [^RigidBody rb (.getObjectId b)]
+            :when (.isActive rb)]
+      (let [inv (.getInvInertiaDiagLocal rb (javax.vecmath.Vector3f.))
+            inertia (mapv #(if (pos? (double %)) (/ 1.0 (double %)) 0.0) [(.x inv) (.y inv) (.z inv)])
+            w (.getAngularVelocity rb (javax.vecmath.Vector3f.))
+            basis (.basis (.getWorldTransform rb (Transform.)))
+            r (vec (for [i (range 3)] (vec (for [j (range 3)] (double (.getElement basis (int i) (int j)))))))
+            rt (apply mapv vector r)
+            wb (m*v rt [(.x w) (.y w) (.z w)])
+            ib (mapv * inertia wb)
+            f (mapv #(* dt %) (cross3 wb ib))
+            i-diag [[(inertia 0) 0.0 0.0] [0.0 (inertia 1) 0.0] [0.0 0.0 (inertia 2)]]
+            s0 (skew wb) s1 (skew ib)
+            jac (vec (for [i (range 3)]
+                       (vec (for [j (range 3)]
+                              (+ (get-in i-diag [i j])
+                                 (* dt (- (* (get-in s0 [i j]) (inertia j)) (get-in s1 [i j]))))))))]
+        (when (every? pos? inertia)
+          (let [wb2 (mapv - wb (solve3 jac f))
+                [x y z] (m*v r wb2)]
+            (.setAngularVelocity rb (javax.vecmath.Vector3f. (float x) (float y) (float z)))))))))
+
 (defn hull-points
   "The points of `shape`'s hull (or of its first child's, for a compound
   shape), [[x y z] ...], or nil when it is no hull."

@@ -242,6 +242,13 @@
   [^PhysicsSpace space]
   (.setMode ^SolverInfo (.getSolverInfo space) (int (bit-or 4 256))))
 
+(defn gyroscopic-step!
+  "Before a substep: nothing here; native Bullet's bodies already take
+  the implicit gyroscopic term (BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY,
+  its default), as Blender's do."
+  [_space _dt]
+  nil)
+
 (defn hull-points
   "The points of `shape`'s hull (or of its first child's, for a compound
   shape), [[x y z] ...], or nil when it is no hull."
