@@ -65,7 +65,9 @@
                        ["run" "-m" "cortex.engine-speed" "--compare"]]
             ;; lein evolve: the worm learns to crawl; see org/evolve.org
             "evolve" ["run" "-m" "cortex.evolve"]}
-  :profiles {:dev {:source-paths ["dev"]
+  :profiles {:dev {;; engine/jbullet/dev: measuring tools that reach into jBullet
+                   ;; (org/physics-trust.org), left out by the native profile
+                   :source-paths ["dev" "engine/jbullet/dev"]
                    :dependencies ~dev-dependencies}
              ;; lein with-profile +native ...: native Bullet through Minie, in
              ;; place of jme3-jbullet; cortex's code is the same but for one

@@ -14,7 +14,7 @@
    "quadruped" "test/fixtures/designer/quadruped.blend"
    "hand" "Models/test-creature/hand.blend"})
 
-(defn- extent
+(defn extent
   "[lowest highest] point of `creature`'s segments."
   [^Node creature]
   (.updateGeometricState creature)
@@ -23,7 +23,7 @@
              [(- (.y (.getCenter b)) (.getYExtent b)) (+ (.y (.getCenter b)) (.getYExtent b))])]
     [(apply min (map first bs)) (apply max (map second bs))]))
 
-(defn- overshoot
+(defn overshoot
   "How far past its limits joint state `j` of description `d` is,
   radians, scaled to the allowance: a hinge's by 0.05, a cone's by 0.1,
   so that 1 is the most either may go past."

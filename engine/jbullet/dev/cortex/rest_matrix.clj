@@ -18,6 +18,7 @@
   (:require [cortex.body :as body]
             [cortex.sim :as sim]
             [cortex.util :as util]
+            [cortex.physics-trust-test :refer [extent]]
             [cortex.trust-matrix :as tm]
             [clojure.string :as str])
   (:import (com.jme3.scene Node)
@@ -62,7 +63,7 @@
         friction (frictions (mod i (count frictions)))
         ^Node c (util/load-blender-model path)
         _ (.rotate c (float ax) (float ay) (float az))
-        [lo _] (tm/extent c)
+        [lo _] (extent c)
         _ (.move c 0 (float (- h lo)) 0)
         _ (.updateGeometricState c)
         ;; built where it was put: a RigidBodyControl takes its place

@@ -10,6 +10,7 @@
   `configs` or an EDN map; FRICTIONS=0.5,1.0 CREATURES=hand,humanoid
   NOSPEED=1 narrow the run."
   (:require [cortex.body :as body]
+            [cortex.physics-trust-test :refer [extent overshoot]]
             [cortex.sim :as sim]
             [cortex.util :as util]
             [clojure.string :as str])
@@ -27,24 +28,6 @@
    ["hand" #(util/load-blender-model "Models/test-creature/hand.blend")]
    ["chain-100" #((requiring-resolve 'cortex.bench.creatures/creature)
                   ((requiring-resolve 'cortex.bench.creatures/chain) 100))]])
-
-(defn extent [^Node creature]
-  (.updateGeometricState creature)
-  (let [bs (for [^Geometry g (body/segments creature)
-                 :let [^BoundingBox b (.getWorldBound g)]]
-             [(- (.y (.getCenter b)) (.getYExtent b)) (+ (.y (.getCenter b)) (.getYExtent b))])]
-    [(apply min (map first bs)) (apply max (map second bs))]))
-
-(defn overshoot [{:keys [type angle swing twist]} d]
-  (case type
-    :hinge (let [[lo hi] (:limit d)]
-             (/ (max 0.0 (- (double lo) angle) (- angle (double hi))) 0.05))
-    :cone (let [[sy sz] swing]
-            (/ (max 0.0 (- (Math/abs (double twist)) (double (:twist d)))
-                    (- (Math/abs (double sy)) (double (:limit-xz d)))
-                    (- (Math/abs (double sz)) (double (:limit-xy d))))
-               0.1))
-    0.0))
 
 (defn configure!
   "Apply config `cfg` to simulation `s` of `creature`."
