@@ -20,7 +20,7 @@
   (:import (com.jme3.bounding BoundingBox)
            (com.jme3.bullet.collision.shapes CompoundCollisionShape HullCollisionShape)
            (com.jme3.bullet.control RigidBodyControl)
-           (com.jme3.bullet.joints ConeJoint HingeJoint PhysicsJoint SixDofJoint)
+           (com.jme3.bullet.joints HingeJoint PhysicsJoint)
            (com.jme3.bullet.objects PhysicsRigidBody)
            (com.jme3.collision CollisionResults)
            (com.jme3.math Matrix3f Quaternion Vector3f)
