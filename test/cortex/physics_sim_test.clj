@@ -242,12 +242,6 @@
       (is (< (relative-median r 1) 0.02))
       (is (< (relative-median r 2) 0.02)))))
 
-(def ^:private kick-limit
-  "How far from Blender's (over the scene's size) =kick= may be at 1 s:
-  2% on native Bullet (it is 0.08%), 3% on jBullet (2.1%; see \"The
-  first-frame kick\")."
-  (if (= :native cortex.engine/name) 0.02 0.03))
-
 (defn- median-against
   "The median, over `r`'s moving bodies, of the distance between
   cortex's body and Blender's simulation `sim` at time index `i`, over
@@ -266,7 +260,7 @@
                 r (case-run name)]]
     (testing (str name " against Blender " (get sim "blender_version"))
       (is (= (set (keys (get sim "objects"))) (set (keys (get (blender-sim name) "objects")))))
-      (is (< (median-against r sim 2) (if (= name "kick") kick-limit 0.02))))))
+      (is (< (median-against r sim 2) 0.02)))))
 
 (deftest a-chain-of-bone-shaped-bodies
   (let [r (case-run "rig-chain")
@@ -328,5 +322,5 @@
     (testing "no body in the first frame faster than Blender's fastest + 0.5 m/s"
       (is (< (fastest ours) (+ (fastest theirs) 0.5))))
     (is (gaps-hold? r nil))
-    (testing "the ring moves as Blender's does at 1 s (jBullet: within 3%, see the kick)"
-      (is (< (relative-median r 2) kick-limit)))))
+    (testing "the ring moves as Blender's does at 1 s (on both engines)"
+      (is (< (relative-median r 2) 0.02)))))

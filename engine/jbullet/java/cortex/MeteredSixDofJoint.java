@@ -23,9 +23,12 @@ import com.jme3.math.Vector3f;
  * needs in an iteration, a locked axis 0.7 of it), corrects errors at
  * other rates (0.5 for limits, 0.35 for locked axes, where Bullet 2.8
  * uses the world's 0.2), lets a limit pull as well as push, and never
- * writes its applied impulse. Here the rows are Bullet 2.8's: angular
- * rows first, then linear; each row's impulse makes the relative
- * velocity along its axis what the error correction wants (ERP 0.2); a
+ * writes its applied impulse; and its angular axes are not unit
+ * vectors (the Y axis is as long as the Y angle's cosine), which makes
+ * its limits pull back harder. Here the rows are Bullet 2.8's: angular
+ * rows first, then linear, each along a unit axis; each row's impulse
+ * makes the relative velocity along its axis what the error correction
+ * wants (ERP 0.2); a
  * limit only pushes; a locked axis holds both ways; and when a breaking
  * threshold is set, no row's impulse in a step exceeds it, as Bullet 2.8
  * clamps a breakable constraint's rows. Motors are jBullet's.
@@ -87,18 +90,22 @@ public class MeteredSixDofJoint extends SixDofJoint {
             return x < lo ? lo : (x > hi ? hi : x);
         }
 
-        /** Angle i: a motor as jBullet drives it, or a limit as Bullet 2.8 holds it. */
+        /**
+         * Angle i: a motor as jBullet drives it, or a limit as Bullet 2.8
+         * holds it, along the unit axis (jBullet's axes are not).
+         */
         private void angularRow(int i, float dt) {
             com.bulletphysics.dynamics.constraintsolver.RotationalLimitMotor m = angularLimits[i];
             if (!m.needApplyTorques()) {
                 return;
             }
             getAxis(i, axis);
-            float inv = 1f / jacAng[i].getDiagonal();
             if (m.currentLimit == 0) {
-                m.solveAngularLimits(dt, axis, inv, rbA, rbB);
+                m.solveAngularLimits(dt, axis, 1f / jacAng[i].getDiagonal(), rbA, rbB);
                 return;
             }
+            axis.normalize();
+            float inv = 1f / (angularMass(rbA, axis) + angularMass(rbB, axis));
             rbA.getAngularVelocity(va);
             rbB.getAngularVelocity(vb);
             va.sub(vb);
