@@ -230,6 +230,13 @@
   (testing "a cone needs its three angles"
     (is (re-find #"joint \"neck\": cone joint needs a finite number for :twist"
                  (connect-message "{:type :cone :limit-xz 1 :limit-xy 1}"))))
+  (testing "a spring needs its stiffness, and no negative damping"
+    (is (re-find #"joint \"neck\": spring joint needs a number >= 0 for :stiffness, not nil"
+                 (connect-message "{:type :spring :damping 2}")))
+    (is (re-find #"joint \"neck\": spring joint needs a number >= 0 for :damping, not -2"
+                 (connect-message "{:type :spring :stiffness 10 :damping -2}")))
+    (is (re-find #"joint \"neck\": spring joint: unknown key :stifness; a spring joint takes :damping, :kd"
+                 (connect-message "{:type :spring :stifness 10}"))))
   (testing "a joint empty with no description"
     (is (re-find #"joint \"neck\": it has no joint property" (connect-message nil))))
   (testing "a mass that is not a number names the object"
