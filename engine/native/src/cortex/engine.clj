@@ -425,26 +425,14 @@
     j))
 
 (defn spring-joint
-  "A spring joint (see the body chapter): a New6Dof (Bullet's
-  btGeneric6DofSpring2Constraint) between the bodies of `control-a` and
-  `control-b` at `pivot-a`, `pivot-b` with frames `frame-a`, `frame-b`
-  (Matrix3f, each in its body's frame), its translation locked, its
-  rotations (Euler XYZ in the joint's frame) within [-t t], [-y y],
-  [-z z] of `limits` [t y z], each sprung towards 0 with `stiffness`
-  (N m/rad) and `damping` (N m s/rad)."
-  [control-a control-b ^Vector3f pivot-a ^Vector3f pivot-b
-   ^Matrix3f frame-a ^Matrix3f frame-b [t y z] stiffness damping]
-  (let [j (com.jme3.bullet.joints.New6Dof. ^PhysicsRigidBody control-a ^PhysicsRigidBody control-b
-                                            pivot-a pivot-b frame-a frame-b
-                                            com.jme3.bullet.RotationOrder/XYZ)
-        tm (.getTranslationMotor j)]
-    (.set tm MotorParam/LowerLimit (Vector3f.))
-    (.set tm MotorParam/UpperLimit (Vector3f.))
-    (doseq [[i lim] (map-indexed vector [t y z])
-            :let [m (.getRotationMotor j (int i))
-                  dof (int (+ 3 i))]]
-      (.set m MotorParam/LowerLimit (float (- (double lim))))
-      (.set m MotorParam/UpperLimit (float lim))
+  "A spring joint (see the body chapter): `six-dof-joint`'s joint of
+  these bodies, pivots, frames and `limits` [t y z], its three angles
+  each sprung towards 0 with `stiffness` (N m/rad) and `damping`
+  (N m s/rad)."
+  [control-a control-b pivot-a pivot-b frame-a frame-b limits stiffness damping]
+  (let [^com.jme3.bullet.joints.New6Dof j
+        (six-dof-joint control-a control-b pivot-a pivot-b frame-a frame-b limits)]
+    (doseq [dof (range 3 6) :let [dof (int dof)]]
       (.enableSpring j dof true)
       (.setStiffness j dof (float stiffness) false)
       (.setDamping j dof (float damping) false)
