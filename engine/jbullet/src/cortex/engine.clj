@@ -193,26 +193,25 @@
     (doseq [^PhysicsRigidBody b (.getRigidBodyList space)
             :when (pos? (.getMass b))
             :let [^RigidBody rb (.getObjectId b)]
-            :when (.isActive rb)]
-      (let [inv (.getInvInertiaDiagLocal rb (javax.vecmath.Vector3f.))
-            inertia (mapv #(if (pos? (double %)) (/ 1.0 (double %)) 0.0) [(.x inv) (.y inv) (.z inv)])
-            w (.getAngularVelocity rb (javax.vecmath.Vector3f.))
+            :when (.isActive rb)
+            :let [inv (.getInvInertiaDiagLocal rb (javax.vecmath.Vector3f.))
+                  inertia (mapv #(/ 1.0 (double %)) [(.x inv) (.y inv) (.z inv)])]
+            ;; a body that cannot turn about some axis has nothing to turn
+            :when (every? #(Double/isFinite %) inertia)]
+      (let [w (.getAngularVelocity rb (javax.vecmath.Vector3f.))
             basis (.basis (.getWorldTransform rb (Transform.)))
             r (vec (for [i (range 3)] (vec (for [j (range 3)] (double (.getElement basis (int i) (int j)))))))
-            rt (apply mapv vector r)
-            wb (m*v rt [(.x w) (.y w) (.z w)])
+            wb (m*v (apply mapv vector r) [(.x w) (.y w) (.z w)])
             ib (mapv * inertia wb)
             f (mapv #(* dt %) (cross3 wb ib))
-            i-diag [[(inertia 0) 0.0 0.0] [0.0 (inertia 1) 0.0] [0.0 0.0 (inertia 2)]]
             s0 (skew wb) s1 (skew ib)
+            ;; the Jacobian of the residual: I + dt (skew(w) I - skew(I w))
             jac (vec (for [i (range 3)]
                        (vec (for [j (range 3)]
-                              (+ (get-in i-diag [i j])
-                                 (* dt (- (* (get-in s0 [i j]) (inertia j)) (get-in s1 [i j]))))))))]
-        (when (every? pos? inertia)
-          (let [wb2 (mapv - wb (solve3 jac f))
-                [x y z] (m*v r wb2)]
-            (.setAngularVelocity rb (javax.vecmath.Vector3f. (float x) (float y) (float z)))))))))
+                              (+ (if (= i j) (inertia i) 0.0)
+                                 (* dt (- (* (get-in s0 [i j]) (inertia j)) (get-in s1 [i j]))))))))
+            [x y z] (m*v r (mapv - wb (solve3 jac f)))]
+        (.setAngularVelocity rb (javax.vecmath.Vector3f. (float x) (float y) (float z)))))))
 
 (defn hull-points
   "The points of `shape`'s hull (or of its first child's, for a compound
