@@ -729,19 +729,23 @@
                        ^Vector3f pivot-a ^Vector3f pivot-b
                        (.mult (body-frame control-a rotation) axis)
                        (.mult (body-frame control-b rotation) axis))
+      (engine/zero-hinge!)
       (engine/limit-hinge! low high))))
 
 (defn- cone-limits
   "[frame-turn [twist y-limit z-limit]] for a cone of swing limits `xz`
-  (about Y) and `xy` (about Z) and `twist`: the turn about X that puts
-  the wider swing on Z (identity when it is there already), and the
-  three limits in the turned frame, none exactly 0, Y's at most 1.5."
+  (about Blender's Y, jME's Z) and `xy` (about Blender's Z, jME's Y) and
+  `twist`: the turn about X that puts the wider swing on jME's Z
+  (identity when it is there already), and the three limits in the
+  turned frame, none exactly 0, Y's at most 1.5."
   [xz xy twist]
-  (let [swap? (> (double xz) (double xy))
+  (let [swap? (> (double xy) (double xz))
+        ;; turned a quarter about X, the frame's Y is jME's Z and its Z
+        ;; is jME's -Y
         turn (if swap?
                (.toRotationMatrix (doto (Quaternion.) (.fromAngleAxis (float (/ Math/PI 2)) Vector3f/UNIT_X)))
                (Matrix3f.))
-        [y z] (if swap? [xy xz] [xz xy])
+        [y z] (if swap? [xz xy] [xy xz])
         open #(max 1e-4 (double %))]
     [turn [(open twist) (min 1.5 (open y)) (open z)]]))
 

@@ -362,3 +362,44 @@
                 (.setLocalRotation (doto (Quaternion.) (.fromAngles 0.3 0.2 0.1)))
                 (body/body!))]
     (is (= (final-state (make) 240) (final-state (make) 240)))))
+
+(deftest hinges-read-zero-where-built
+  (let [tipped (doto (Quaternion.) (.fromAngleAxis (float 0.2) Vector3f/UNIT_Z))
+        beam-node (doto ^Node (segment "beam" (Vector3f. 1.02 2.2 0) :mass (float 5) :half [1 0.25 0.2])
+                    (.setLocalRotation tipped))
+        c (creature "tipped-cantilever"
+                    [(segment "post" (Vector3f. -1.02 2 0) :mass 0) beam-node]
+                    [(marker "elbow" (Vector3f. 0 2 0)
+                             "{:type :hinge :limit [-0.3 0.3] :axis (Vector3f. 0 1 0)}")])
+        _ (body/body! c)
+        beam (second (body/segments c))
+        built (.clone (.getWorldRotation ^Geometry beam))
+        turned #(.toAngleAxis (.mult (.inverse built) (.getWorldRotation ^Geometry beam)) (Vector3f.))]
+    (when (= :jbullet engine/name)
+      ;; native Bullet keeps its own zero and gives limits about it
+      (is (< (Math/abs (.getHingeAngle ^HingeJoint (body/joint c "elbow"))) 1e-4)
+          "jBullet reads the hinge's angle as 0 where it was built"))
+    (simulate c 300)
+    (is (< (Math/abs (- (double (turned)) 0.3)) 0.03)
+        (str "the beam droops by its limit, 0.3, from where it was built, not " (turned)))))
+
+(defn- hang
+  "How far (radians below level) an arm hanging from a fixed post by
+  the cone `text`, its empty turned by `rotation`, has swung after 4 s."
+  [text rotation]
+  (let [c (body/body! (creature "pendulum"
+                                [(segment "post" (Vector3f. -1.02 5 0) :mass (float 0))
+                                 (segment "arm" (Vector3f. 1.02 5 0) :mass (float 1))]
+                                [(marker "joint" (Vector3f. 0 5 0) text :rotation rotation)]))
+        _ (simulate c 240)
+        arm (first (filter #(= "arm" (.getName ^Geometry %)) (body/segments c)))
+        x (.mult (.getWorldRotation ^Geometry arm) Vector3f/UNIT_X)]
+    (Math/asin (- (.y x)))))
+
+(deftest cone-limits-are-on-their-named-axes
+  (let [quarter-about-x (doto (Quaternion.) (.fromAngleAxis (/ FastMath/PI 2) Vector3f/UNIT_X))]
+    (doseq [[xz xy] [[0.9 0.3] [0.3 0.9]]
+            :let [text (format "{:type :cone :limit-xz %s :limit-xy %s :twist 0.1}" xz xy)]]
+      (testing text
+        (is (< (Math/abs (- (hang text Quaternion/IDENTITY) (double xz))) 0.05) "swung about Blender's Y")
+        (is (< (Math/abs (- (hang text quarter-about-x) (double xy))) 0.05) "swung about Blender's Z")))))

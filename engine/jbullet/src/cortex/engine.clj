@@ -325,9 +325,31 @@
       {:frame-a (basis-rotation (.getAFrame ^ConeTwistConstraint c (Transform.)))
        :frame-b (basis-rotation (.getBFrame ^ConeTwistConstraint c (Transform.)))})))
 
+(def ^:private ^java.lang.reflect.Field hinge-frame-b
+  (doto (.getDeclaredField HingeConstraint "rbBFrame") (.setAccessible true)))
+
+(defn zero-hinge!
+  "Make the HingeJoint `joint`'s angle 0 where its two bodies are now."
+  [^com.jme3.bullet.joints.HingeJoint joint]
+  (let [^HingeConstraint c (.getObjectId joint)
+        ^Transform fb (.get hinge-frame-b c)
+        fa (.getAFrame c (Transform.))
+        ta (.getCenterOfMassTransform (.getRigidBodyA c) (Transform.))
+        tb (.getCenterOfMassTransform (.getRigidBodyB c) (Transform.))
+        m (javax.vecmath.Matrix3f. (.basis tb))]
+    ;; B's frame = B's rotation^-1 * A's rotation * A's frame, third
+    ;; column negated; a hinge that reads 0 already is left as built
+    (when-not (< (Math/abs (.getHingeAngle c)) 1e-6)
+      (.transpose m)
+      (.mul m (.basis ta))
+      (.mul m (.basis fa))
+      (dotimes [i 3] (.setElement m i 2 (- (.getElement m i 2))))
+      (.set (.basis fb) m))
+    joint))
+
 (defn limit-hinge!
   "Limit the HingeJoint `joint` to [low high], in the engine's sense of
-  its angle (see `hinge-limits`)."
+  its angle (see `hinge-limits`), about the zero `zero-hinge!` set."
   [^com.jme3.bullet.joints.HingeJoint joint low high]
   (.setLimit joint (float low) (float high))
   joint)

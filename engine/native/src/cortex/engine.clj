@@ -361,16 +361,39 @@
   its angle before the last step, a double array [low high angle seen?]."
   (java.util.Collections/synchronizedMap (java.util.WeakHashMap.)))
 
-(defn- set-limits! [^com.jme3.bullet.joints.HingeJoint joint low high]
-  (.setLimit joint (float low) (float high) (float 0.9) (float 1.0) (float 0.0)))
+(def ^:private ^java.util.Map hinge-zeros
+  "Each hinge `zero-hinge!` saw (weakly held) -> the engine's angle then."
+  (java.util.Collections/synchronizedMap (java.util.WeakHashMap.)))
+
+(defn zero-hinge!
+  "Make the HingeJoint `joint`'s angle 0 where its two bodies are now:
+  Minie cannot set a hinge's frames, so the engine's angle now is kept
+  and every limit is given about it (see `limit-hinge!`)."
+  [^com.jme3.bullet.joints.HingeJoint joint]
+  (.put hinge-zeros joint (double (.getHingeAngle joint)))
+  joint)
+
+(defn- wrap ^double [^double a]
+  (- a (* 2.0 Math/PI (Math/floor (/ (+ a Math/PI) (* 2.0 Math/PI))))))
+
+(defn- set-limits!
+  "Give the hinge `joint` the limits [low high] about its zero `zero`
+  (native Bullet keeps a limit as a centre and a half range, so one
+  that crosses a half turn is fine)."
+  [^com.jme3.bullet.joints.HingeJoint joint ^double zero low high]
+  (.setLimit joint (float (+ zero (double low))) (float (+ zero (double high)))
+             (float 0.9) (float 1.0) (float 0.0)))
 
 (defn limit-hinge!
   "Limit the HingeJoint `joint` to [low high], in the engine's sense of
-  its angle (see `hinge-limits`), speculatively: see above."
+  its angle (see `hinge-limits`) about the zero `zero-hinge!` kept,
+  speculatively: see above."
   [^com.jme3.bullet.joints.HingeJoint joint low high]
-  (set-limits! joint low high)
-  (.put limited-hinges joint (double-array [low high 0.0 0.0]))
-  joint)
+  (let [zero (double (or (.get hinge-zeros joint) 0.0))]
+    (set-limits! joint zero low high)
+    ;; [low high angle-before seen? zero limits-now-low limits-now-high]
+    (.put limited-hinges joint (double-array [low high 0.0 0.0 zero low high]))
+    joint))
 
 (defn- speculate!
   "Before a step: stop each limited hinge of `space` that would pass a
@@ -380,14 +403,17 @@
           :let [^doubles state (.get limited-hinges j)]
           :when state]
     (let [^com.jme3.bullet.joints.HingeJoint h j
-          lo (aget state 0) hi (aget state 1)
-          angle (double (.getHingeAngle h))
+          lo (aget state 0) hi (aget state 1) zero (aget state 4)
+          angle (wrap (- (double (.getHingeAngle h)) zero))
           next-angle (if (pos? (aget state 3)) (- (* 2.0 angle) (aget state 2)) angle)
-          margin 1e-4]
-      (cond (and (<= angle hi) (> next-angle hi)) (set-limits! h lo (max lo (- angle margin)))
-            (and (>= angle lo) (< next-angle lo)) (set-limits! h (min hi (+ angle margin)) hi)
-            (or (not= (.getLowerLimit h) (float lo)) (not= (.getUpperLimit h) (float hi)))
-            (set-limits! h lo hi))
+          margin 1e-4
+          [l u] (cond (and (<= angle hi) (> next-angle hi)) [lo (max lo (- angle margin))]
+                      (and (>= angle lo) (< next-angle lo)) [(min hi (+ angle margin)) hi]
+                      :else [lo hi])]
+      (when (or (not= (double l) (aget state 5)) (not= (double u) (aget state 6)))
+        (set-limits! h zero l u)
+        (aset state 5 (double l))
+        (aset state 6 (double u)))
       (aset state 2 angle)
       (aset state 3 1.0))))
 
