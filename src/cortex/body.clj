@@ -638,6 +638,22 @@
   ^Matrix3f [^RigidBodyControl control ^Matrix3f rotation]
   (.mult (.invert (engine/rotation-matrix control)) rotation))
 
+(defn- frame-quaternion
+  "The rotation matrix `m` as a quaternion [x y z w]."
+  [^Matrix3f m]
+  (let [q (doto (Quaternion.) (.fromRotationMatrix m))]
+    [(double (.getX q)) (double (.getY q)) (double (.getZ q)) (double (.getW q))]))
+
+(defn- limit-rows!
+  "Give the joint `joint` between `control-a` and `control-b`, whose
+  empty is turned by `rotation`, the engine's rows that hold its limits
+  as proprioception reads them (see cortex.engine/limit-rows!); `spec`
+  the limits, as the joint's description gives them."
+  [joint control-a control-b ^Matrix3f rotation spec]
+  (engine/limit-rows! joint (assoc spec
+                                   :frame-a (frame-quaternion (body-frame control-a rotation))
+                                   :frame-b (frame-quaternion (body-frame control-b rotation)))))
+
 (defn- number-field
   [constraints k]
   (let [v (get constraints k)]
@@ -725,12 +741,15 @@
             (throw (angle-error "hinge :limit" limit "[-pi, pi]")))
         axis (util/blender-to-jme (.normalize axis))
         [low high] (jbullet-hinge-limits limit)]
-    (doto (HingeJoint. ^PhysicsRigidBody control-a ^PhysicsRigidBody control-b
-                       ^Vector3f pivot-a ^Vector3f pivot-b
-                       (.mult (body-frame control-a rotation) axis)
-                       (.mult (body-frame control-b rotation) axis))
-      (engine/zero-hinge!)
-      (engine/limit-hinge! low high))))
+    (-> (HingeJoint. ^PhysicsRigidBody control-a ^PhysicsRigidBody control-b
+                     ^Vector3f pivot-a ^Vector3f pivot-b
+                     (.mult (body-frame control-a rotation) axis)
+                     (.mult (body-frame control-b rotation) axis))
+        (engine/zero-hinge!)
+        (engine/limit-hinge! low high)
+        (limit-rows! control-a control-b rotation
+                     {:axis [(.x ^Vector3f axis) (.y ^Vector3f axis) (.z ^Vector3f axis)]
+                      :limit (mapv double limit)}))))
 
 (defn- cone-limits
   "[frame-turn [twist y-limit z-limit]] for a cone of swing limits `xz`
@@ -760,8 +779,10 @@
       (throw (angle-error (str "cone " k) (get constraints k) "[0, pi]")))
     (let [[^Matrix3f turn [t y z]] (cone-limits xz xy twist)
           frame (.mult rotation turn)]
-      (engine/six-dof-joint control-a control-b pivot-a pivot-b
-                            (body-frame control-a frame) (body-frame control-b frame) [t y z]))))
+      (-> (engine/six-dof-joint control-a control-b pivot-a pivot-b
+                                (body-frame control-a frame) (body-frame control-b frame) [t y z])
+          (limit-rows! control-a control-b rotation
+                       {:twist (double twist) :limit-xz (double xz) :limit-xy (double xy)})))))
 
 (defmethod joint-dispatch :spring
   [constraints control-a control-b pivot-a pivot-b ^Matrix3f rotation]

@@ -108,17 +108,9 @@
   "Whether `creature` on `friction` meets the rest rule today (see the
   table above)."
   [creature friction]
-  ;; on jBullet the heavy-handed humanoid on friction 1 still moves
-  ;; faster than 0.05 m/s at 10 s
-  (not (and (= "heavy-hands" creature) (== friction 1.0) (= :jbullet engine/name))))
-
-(defn- held-together?
-  "Whether `creature` on `friction` keeps its joints within 25 times
-  their allowance today (see the table above)."
-  [creature friction]
-  ;; jBullet: the humanoid's right shoulder, near the singularity of its
-  ;; Euler angles, 27.7 times past for a moment on friction 0.25
-  (not (and (= "humanoid" creature) (== friction 0.25) (= :jbullet engine/name))))
+  ;; jBullet: the four-legged creature's head still slides on friction
+  ;; 0.25, 0.093 between 8 s and 10 s (asleep by 10 s)
+  (not (and (= "quadruped" creature) (== friction 0.25) (= :jbullet engine/name))))
 
 (defn- falls-clean?
   "Whether `creature` keeps under the speed of a clean fall today (see
@@ -135,9 +127,8 @@
     (testing what
       (when (falls-clean? name)
         (is (< fastest limit) (format "fastest %.2f m/s, a clean fall tops out at %.2f" fastest limit)))
-      (when (held-together? name friction)
-        (is (< worst-past 25.0)
-            (format "a joint went %.2f times its allowance past its limit" worst-past)))
+      (is (< worst-past 25.0)
+          (format "a joint went %.2f times its allowance past its limit" worst-past))
       (when (comes-to-rest? name friction)
         (is (some? still-at) "never came to rest")
         (is (< moved 0.02) (format "moved %.4f between 8 s and 10 s" moved))))))

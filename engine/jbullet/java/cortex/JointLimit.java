@@ -1,4 +1,4 @@
-// Generated from org/physics-trust.org by lein tangle: edit the chapter, not this file.
+// Generated from org/engine.org by lein tangle: edit the chapter, not this file.
 package cortex;
 
 import com.bulletphysics.dynamics.RigidBody;
@@ -8,23 +8,29 @@ import javax.vecmath.Quat4f;
 import javax.vecmath.Vector3f;
 
 /**
- * A measurement, not yet a default: a joint's limits as cortex's
- * proprioception reads them (a hinge's twist angle about its axis; a
+ * A joint's limits as cortex's proprioception reads them (a hinge's twist angle about its axis; a
  * cone's twist about X and the Y and Z of its swing's rotation vector,
  * Blender's axes), solved as one-sided angular rows whose impulse only
  * pushes, speculatively: a row within `activation` of its limit lets
  * the joint approach only as fast as reaches the limit at the step's
- * end, and one past it is pushed back by `erp` of the error per step.
+ * end, and one past it is stopped where it is (`erp` of the error per
+ * step is taken back, 0 unless set: see org/engine.org).
  * Frames are quaternions [x y z w] of the joint frame in each body
- * (cortex.proprioception/rest-frames). See org/physics-trust.org.
+ * (as cortex.proprioception/rest-frames finds them). cortex adds one
+ * beside each hinge and cone it builds on jBullet (cortex.engine/limit-rows!);
+ * see org/engine.org and org/physics-trust.org.
  */
 public class JointLimit extends TypedConstraint {
     final double[] fa, fb, axis;
     final boolean hinge;
     final double lo, hi, twist, swingY, swingZ;
-    public float erp = 0.2f;
+    /** How much of a joint's overshoot its rows take back each step: 0,
+     * so that a joint already past its limit is only stopped there (see
+     * org/engine.org). */
+    public float erp = 0f;
     public boolean speculative = true;
     public double activation = 0.3;
+
     final Vector3f[] dir = new Vector3f[6];
     final double[] k = new double[6], c = new double[6], acc = new double[6];
     int rows;

@@ -20,7 +20,7 @@
                                              MeshCollisionShape)
            (com.jme3.bullet.joints PhysicsJoint)
            (com.jme3.bullet.objects PhysicsRigidBody)
-           (cortex MeteredSixDofJoint)
+           (cortex JointLimit MeteredSixDofJoint)
            (com.jme3.math Matrix3f Vector3f)
            (com.jme3.scene Mesh)
            (javax.vecmath Quat4f)))
@@ -386,9 +386,65 @@
                        " on jBullet use a :cone held by a muscle")
                   {:engine name})))
 
+(def ^:private ^java.util.Map limit-rows
+  "Each joint `limit-rows!` was given (weakly held) -> [sequence
+  JointLimit], the sequence the order they were given in."
+  (java.util.Collections/synchronizedMap (java.util.WeakHashMap.)))
+
+(def ^:private ^java.util.concurrent.atomic.AtomicLong limit-sequence
+  (java.util.concurrent.atomic.AtomicLong.))
+
+(defn limit-rows!
+  "Give the hinge or cone `joint` rows of its own that hold its limits
+  as proprioception reads them (cortex.JointLimit), added to whatever
+  space `joint` is in before each step. `spec`: :frame-a and :frame-b,
+  the joint's frame in each body ([x y z w], jME's axes), and for a
+  hinge its :axis in that frame and :limit [lo hi], for a cone its
+  :twist, :limit-xz and :limit-xy."
+  [^PhysicsJoint joint {:keys [frame-a frame-b axis limit twist limit-xz limit-xy]}]
+  (let [^RigidBody a (.getObjectId (.getBodyA joint))
+        ^RigidBody b (.getObjectId (.getBodyB joint))
+        da #(double-array (map double %))
+        l (if axis
+            (let [[lo hi] limit]
+              (JointLimit. a b ^doubles (da frame-a) ^doubles (da frame-b) ^doubles (da axis)
+                           (double lo) (double hi)))
+            (JointLimit. a b ^doubles (da frame-a) ^doubles (da frame-b)
+                         (double twist) (double limit-xz) (double limit-xy)))]
+    (.put limit-rows joint [(.incrementAndGet limit-sequence) l])
+    joint))
+
+(defn- place-limit-rows!
+  "Before a step of `space`: when its joints have changed since the last
+  step (`seen`, an IdentityHashMap of them), add the limit rows of its
+  joints that are not in its dynamics world yet, in the order they were
+  given, and take out those whose joints have left it. `placed` (an
+  IdentityHashMap, JointLimit -> joint) is what this space has."
+  [^PhysicsSpace space ^java.util.Map seen ^java.util.Map placed]
+  (let [joints (.getJointList space)]
+    (when-not (and (== (count joints) (.size seen)) (every? #(.containsKey seen %) joints))
+      (let [^DynamicsWorld world (.getDynamicsWorld space)]
+        (.clear seen)
+        (doseq [j joints] (.put seen j true))
+        (doseq [[l j] (vec placed)
+                :when (not (.containsKey seen j))]
+          (.removeConstraint world l)
+          (.remove placed l))
+        (doseq [[_ ^JointLimit l j] (sort-by first (keep (fn [j] (when-let [[n l] (.get limit-rows j)] [n l j]))
+                                                         joints))
+                :when (not (.containsKey placed l))]
+          (.addConstraint world l true)
+          (.put placed l j))))))
+
 (defn configure-space!
-  "Set `space` up as cortex simulates: here jBullet's defaults, already."
+  "Set `space` up as cortex simulates: jBullet's defaults, and the limit
+  rows of its joints (see `limit-rows!`) added before each step."
   ^PhysicsSpace [^PhysicsSpace space]
+  (let [seen (java.util.IdentityHashMap.)
+        placed (java.util.IdentityHashMap.)]
+    (.addTickListener space (reify com.jme3.bullet.PhysicsTickListener
+                              (prePhysicsTick [_ s _] (place-limit-rows! s seen placed))
+                              (physicsTick [_ _ _]))))
   space)
 
 (defn add-all!

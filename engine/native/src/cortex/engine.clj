@@ -465,6 +465,13 @@
       (.setEquilibriumPoint j dof (float 0)))
     j))
 
+(defn limit-rows!
+  "Nothing: native Bullet runs no constraint written in Java (on jBullet
+  this adds cortex.JointLimit's rows; here hinges are limited
+  speculatively, see `limit-hinge!`)."
+  [joint _spec]
+  joint)
+
 (defn configure-space!
   "Set `space` up as cortex simulates: split impulse off, as in jBullet;
   hinges limited speculatively; Blender's collision collections decide
