@@ -75,7 +75,9 @@
              ;; from org/engine.org. Minie 8.2.0 bundles its natives; it is
              ;; built against jME 3.6.1, whose jme3-core is kept out here so
              ;; that both engines run on the same jME (3.2.4).
-             :native {:source-paths ^:replace ["src" "engine/native/src" "dev"]
+             ;; engine/native/dev: measuring tools that reach into native
+             ;; Bullet (org/featherstone.org), left out by the default profile
+             :native {:source-paths ^:replace ["src" "engine/native/src" "dev" "engine/native/dev"]
                       :java-source-paths ^:replace ["java" "engine/native/java"]
                       :dependencies ~(with-meta
                                        (into (into shared-dependencies dev-dependencies)
