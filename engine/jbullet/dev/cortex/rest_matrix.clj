@@ -68,7 +68,7 @@
         _ (.updateGeometricState c)
         ;; built where it was put: a RigidBodyControl takes its place
         ;; from its Geometry only when it is attached
-        _ (body/body! c (body-opts cfg))
+        _ (tm/build! cfg c (body-opts cfg))
         joints (mapv :physics-joint (body/joint-records c))
         s (sim/simulation c {:floor {:height 0 :friction friction} :observe #{:segments}})
         _ (configure! cfg s c)
@@ -96,8 +96,8 @@
   "Steps per CPU second of the humanoid under `cfg`, sleeping off, 300
   warm-up and `n` timed steps."
   [cfg n]
-  (let [c (body/body! ^Node (util/load-blender-model (second (last creatures)))
-                      (assoc (body-opts cfg) :sleeping-thresholds [0 0]))
+  (let [c (tm/build! cfg (util/load-blender-model (second (last creatures)))
+                     (assoc (body-opts cfg) :sleeping-thresholds [0 0]))
         s (sim/simulation c {:floor {:height -0.2 :friction 1.0} :observe #{}})]
     (configure! cfg s c)
     (dotimes [_ 300] (sim/step! s))

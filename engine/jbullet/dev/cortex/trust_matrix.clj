@@ -7,8 +7,9 @@
   jBullet only (cortex.JointLimit is a jBullet constraint).
 
   bin/lein run -m cortex.trust-matrix SETTING...   each a name in
-  `configs` or an EDN map; FRICTIONS=0.5,1.0 CREATURES=hand,humanoid
-  NOSPEED=1 narrow the run."
+  `configs` or an EDN map ({:rows false} builds without cortex's limit
+  rows); FRICTIONS=0.5,1.0 CREATURES=hand,humanoid NOSPEED=1 narrow the
+  run."
   (:require [cortex.body :as body]
             [cortex.physics-trust-test :refer [extent overshoot]]
             [cortex.sim :as sim]
@@ -105,10 +106,19 @@
     (:ang-damp cfg) (assoc :angular-damping (:ang-damp cfg))
     (:sleep cfg) (assoc :sleeping-thresholds (:sleep cfg))))
 
+(defn build!
+  "body! `creature` with `cfg`'s body options; without cortex's limit
+  rows (cortex.engine/limit-rows!) when `cfg` has :rows false."
+  [cfg ^Node creature opts]
+  (if (false? (:rows cfg))
+    (with-redefs [cortex.engine/limit-rows! (fn [joint _] joint)]
+      (body/body! creature opts))
+    (body/body! creature opts)))
+
 (defn drop! [cfg ^Node creature friction]
   (let [[lo hi] (extent creature)
         _ (.move creature 0 (float (- 1.0 lo)) 0)
-        _ (body/body! creature (body-opts cfg))
+        _ (build! cfg creature (body-opts cfg))
         limit (+ 1.0 (Math/sqrt (* 2 9.81 (+ 1.0 (- hi lo)))))
         described (into {} (map (juxt :name :description)) (body/joint-records creature))
         s (sim/simulation creature {:floor {:height 0 :friction friction} :observe #{:joints :segments}})
@@ -136,7 +146,7 @@
   "Steps per CPU second of the humanoid, sleeping off, 300 warm-up and
   `n` timed steps."
   [cfg n]
-  (let [c (body/body! ^Node ((second (first creatures))) (assoc (body-opts cfg) :sleeping-thresholds [0 0]))
+  (let [c (build! cfg ((second (first creatures))) (assoc (body-opts cfg) :sleeping-thresholds [0 0]))
         s (sim/simulation c {:floor {:height -0.2 :friction 1.0} :observe #{}})]
     (configure! cfg s c)
     (dotimes [_ 300] (step! cfg s))
