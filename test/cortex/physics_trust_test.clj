@@ -132,3 +132,33 @@
       (when (comes-to-rest? name friction)
         (is (some? still-at) "never came to rest")
         (is (< moved 0.02) (format "moved %.4f between 8 s and 10 s" moved))))))
+
+(defn- swing-into-limit
+  "The largest angle a beam hinged to a fixed post (limits +-0.3 rad)
+  reaches in 2 s when swung at `w` rad/s, with no gravity; built without
+  cortex's limit rows when `rows?` is false."
+  [rows? w]
+  (let [c ((requiring-resolve 'cortex.joint-fixtures/two-segments)
+           "{:type :hinge :limit [-0.3 0.3] :axis [0 0 1]}" Quaternion/IDENTITY [0 1] 0)
+        c (if rows?
+            (body/body! c)
+            (with-redefs [engine/limit-rows! (fn [joint _] joint)] (body/body! c)))
+        ^com.jme3.bullet.control.RigidBodyControl beam
+        (.getControl ^Geometry (second (body/segments c)) com.jme3.bullet.control.RigidBodyControl)
+        s (sim/simulation c {:gravity [0 0 0] :observe #{:joints}})]
+    ;; about the hinge's axis (Blender's Z, jME's Y), the beam's end
+    ;; moving with it
+    (.setAngularVelocity beam (com.jme3.math.Vector3f. 0 (float w) 0))
+    (.setLinearVelocity beam (com.jme3.math.Vector3f. 0 0 (float (- w))))
+    (apply max (for [_ (range 120)]
+                 (Math/abs (double (get-in (sim/step! s) [:joints "elbow" :angle])))))))
+
+(deftest limit-rows-stop-a-hinge-at-its-limit
+  (when (= :jbullet engine/name)
+    (doseq [w [5 10]]
+      (testing (str w " rad/s")
+        (let [with-rows (swing-into-limit true w)
+              without (swing-into-limit false w)]
+          (is (> with-rows 0.29) "the beam reaches its limit")
+          (is (< with-rows 0.31) (format "with the rows it stops %.4f past" (- with-rows 0.3)))
+          (is (> without 0.32) (format "jBullet's limit alone lets it %.4f past" (- without 0.3))))))))
