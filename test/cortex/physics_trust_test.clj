@@ -55,18 +55,16 @@
   about its axis; a cone's three angles as body! limits them, the Euler
   angles of its relative rotation in the frame body! gives the engine
   (turned when the wider swing is about jME's Y, see the body chapter)."
-  [{:keys [type axis] :as sensor} d]
-  (let [q (p/relative-rotation sensor)]
-    (case type
-      :hinge (let [[lo hi] (:limit d) a (p/twist-angle q axis)]
-               (/ (max 0.0 (- (double lo) a) (- a (double hi))) 0.05))
-      :cone (let [[^Matrix3f turn limits] (#'body/cone-limits (:limit-xz d) (:limit-xy d) (:twist d))
-                  [x y z w] q
-                  r (.toRotationMatrix (Quaternion. (float x) (float y) (float z) (float w)))
-                  angles (euler-xyz (.mult (.transpose turn) (.mult r turn)))]
-              (/ (reduce max 0.0 (map (fn [a l] (- (Math/abs (double a)) (double l))) angles limits))
-                 0.1))
-      0.0)))
+  [{:keys [type] :as sensor} d]
+  (case type
+    :hinge (overshoot (p/joint-state sensor) d)
+    :cone (let [[^Matrix3f turn limits] (#'body/cone-limits (:limit-xz d) (:limit-xy d) (:twist d))
+                [x y z w] (p/relative-rotation sensor)
+                r (.toRotationMatrix (Quaternion. (float x) (float y) (float z) (float w)))
+                angles (euler-xyz (.mult (.transpose turn) (.mult r turn)))]
+            (/ (reduce max 0.0 (map (fn [a l] (- (Math/abs (double a)) (double l))) angles limits))
+               0.1))
+    0.0))
 
 (defn drop!
   "Drop `creature` (a Node, not yet built) with its lowest point 1 m

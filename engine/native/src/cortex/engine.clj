@@ -357,8 +357,10 @@
       {:frame-a (q (.getRotA j)) :frame-b (q (.getRotB j)) :axis [0.0 0.0 1.0]})))
 
 (def ^:private ^java.util.Map limited-hinges
-  "Each hinge cortex limits (weakly held) -> its limits [low high] and
-  its angle before the last step, a double array [low high angle seen?]."
+  "Each hinge cortex limits (weakly held) -> a double array [low high
+  angle seen? zero low-now high-now]: its limits, its angle (about its
+  zero) before the last step and whether there was one, the engine's
+  angle where it was built, and the limits it has now."
   (java.util.Collections/synchronizedMap (java.util.WeakHashMap.)))
 
 (def ^:private ^java.util.Map hinge-zeros
