@@ -857,22 +857,10 @@
         (throw (ex-info (str label ": " (ex-message e))
                         (assoc (ex-data e) :joint (.getName joint)) e))))))
 
-(defn- edit-distance
-  "Levenshtein distance between strings `a` and `b`."
-  [^String a ^String b]
-  (peek (reduce (fn [prev ca]
-                  (reduce (fn [row [j cb]]
-                            (conj row (min (inc (peek row)) (inc (prev (inc j)))
-                                           (+ (prev j) (if (= ca cb) 0 1)))))
-                          [(inc (first prev))]
-                          (map-indexed vector b)))
-                (vec (range (inc (count b))))
-                a)))
-
 (defn- like-joints?
   [^String name]
   (let [n (-> name str/lower-case str/trim (str/replace #"\.\d+$" ""))]
-    (<= (long (edit-distance n "joints")) 1)))
+    (<= (long (util/edit-distance n "joints")) 1)))
 
 (defn naming-doubts
   "Doubts and warnings about how `creature` names its joints: a node

@@ -615,7 +615,7 @@
       (.mult (util/blender-to-jme (util/vec3 g)) (float w))
       (Vector3f.))))
 
-(defn- substep-length
+(defn substep-length
   "The largest float a such that Java's float arithmetic gives
   (int) ((float) x / a) >= k, for x = t/60 as a float: Bullet's fixed
   step loop then runs exactly k substeps of a in a step of x (or more,

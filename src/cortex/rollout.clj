@@ -28,7 +28,7 @@
 (def spec-keys
   "Every key a spec may have."
   #{:creature :controller :params :seconds :seed :start :floor :observe
-    :torso :fall-angle :trajectory :id})
+    :torso :fall-angle :trajectory :id :solver})
 
 (def max-seconds
   "The longest rollout, simulated seconds."
@@ -37,7 +37,7 @@
 (def defaults
   "What a spec leaves out."
   {:controller nil :params nil :seed 0 :start {:shift 0.0 :turn 0.0} :floor 0
-   :observe #{} :torso nil :fall-angle (/ Math/PI 3) :trajectory nil})
+   :observe #{} :torso nil :fall-angle (/ Math/PI 3) :trajectory nil :solver nil})
 
 (defn- fail!
   [index spec field message & [cause]]
@@ -84,8 +84,10 @@
                                  " simulation would be needed on every worker); for eyes,"
                                  " make each simulation with cortex.sim/simulation and"
                                  " {:eyes true} on its own thread (see org/vision.org)")))
-  (doseq [k (keys spec) :when (not (spec-keys k))]
-    (fail! index spec k (str "unknown key; a spec takes " (str/join ", " (sort spec-keys)))))
+  (doseq [k (keys spec) :when (not (spec-keys k))
+          :let [near (util/near-miss k spec-keys)]]
+    (fail! index spec k (str "unknown key; " (when near (str "did you mean " near "? "))
+                             "a spec takes " (str/join ", " (sort spec-keys)))))
   (let [{:keys [creature controller params seconds seed start floor observe torso
                 fall-angle trajectory] :as s} (merge defaults spec)]
     (when-not (creature-exists? creature)
@@ -109,6 +111,9 @@
       (fail! index s :torso (str "must be a segment's name, not " (pr-str torso))))
     (when-not (and (finite? fall-angle) (< 0 (double fall-angle)) (<= (double fall-angle) Math/PI))
       (fail! index s :fall-angle (str "must be an angle in (0, pi], not " (pr-str fall-angle))))
+    (try (sim/check-solver! (:solver s))
+         (catch clojure.lang.ExceptionInfo e
+           (fail! index s :solver (ex-message e) e)))
     (when-not (or (nil? trajectory) (pos-int? trajectory))
       (fail! index s :trajectory (str "must be nil or a positive whole number of steps, not "
                                       (pr-str trajectory))))
@@ -188,9 +193,10 @@
   before its first step: the creature loaded, placed as its seed says,
   built, over its floor. To watch a rollout, show it with sim/world and
   `controller`."
-  [{:keys [creature seed start floor observe]}]
+  [{:keys [creature seed start floor observe solver]}]
   (let [c (doto ^Node (util/load-blender-model creature) (place! seed start) (body/body!))]
-    (sim/simulation c {:floor floor :observe (into #{:joints :segments} observe)})))
+    (sim/simulation c (cond-> {:floor floor :observe (into #{:joints :segments} observe)}
+                        solver (assoc :solver solver)))))
 
 (defn controller
   "The controller proper of the checked spec `s`: a function from an

@@ -8,10 +8,12 @@
   bodies to the scene graph), `world` (a cortex world that shows a
   simulation and steps it, for windows and cortex.render's recording),
   `steps`, `sim-time`, `last-efforts` (the torques the last step applied),
+  `solver` (its solver iterations and substeps), `check-solver!`,
   `destroy!`."
   (:require [cortex.body :as body]
             [cortex.engine :as engine]
             [cortex.muscle :as muscle]
+            [cortex.physics-tab :as physics-tab]
             [cortex.proprioception :as p]
             [cortex.touch :as touch]
             [cortex.util :as util]
@@ -32,7 +34,9 @@
   (float (/ (float 1) (float 60))))
 
 (def max-sub-steps
-  "PhysicsSpace.update's default: at most four Bullet steps per frame."
+  "PhysicsSpace's default: at most four Bullet steps per frame (a
+  simulation's :solver, or a Physics-tab creature's file, may ask for
+  more)."
   4)
 
 (defn physics-space
@@ -77,8 +81,54 @@
     (doseq [[k v] pairs] (.put m k v))
     m))
 
+(def option-keys
+  "Every option `simulation` takes."
+  #{:gravity :floor :observe :eyes :solver})
+
+(def solver-keys
+  "What a simulation's :solver may set: :iterations (the constraint
+  solver's passes per Bullet step) and :substeps (Bullet steps per
+  1/60 s step)."
+  #{:iterations :substeps})
+
+(def solver-bounds
+  "The largest :iterations and :substeps a :solver may ask for."
+  {:iterations 1000 :substeps 64})
+
+(defn- unknown-key-error
+  "An ex-info for the key `k` of `what`, which is none of `known`,
+  naming the known key it is most likely a misspelling of."
+  [what k known data]
+  (let [near (util/near-miss k known)]
+    (ex-info (str what " has no key " (pr-str k)
+                  (when near (str "; did you mean " near "?"))
+                  " It takes " (clojure.string/join ", " (sort known)))
+             (assoc data :key k :known (vec (sort known))))))
+
+(defn check-solver!
+  "Check a simulation's :solver option `solver` (nil, or a map of
+  `solver-keys` to whole numbers from 1 to `solver-bounds`); an ex-info
+  naming the key at fault otherwise."
+  [solver]
+  (when (some? solver)
+    (when-not (map? solver)
+      (throw (ex-info (str ":solver must be a map such as {:iterations 20 :substeps 2}, not "
+                           (pr-str solver))
+                      {:solver solver})))
+    (doseq [k (keys solver) :when (not (solver-keys k))]
+      (throw (unknown-key-error ":solver" k solver-keys {:solver solver})))
+    (doseq [[k v] solver
+            :let [hi (solver-bounds k)]
+            :when (not (and (int? v) (<= 1 (long v) (long hi))))]
+      (throw (ex-info (str ":solver " k " must be a whole number from 1 to " hi ", not " (pr-str v))
+                      {:solver solver :key k :value v}))))
+  solver)
+
 (defn- check-options!
-  [{:keys [gravity floor observe] :as opts}]
+  [{:keys [gravity floor observe solver] :as opts}]
+  (doseq [k (keys opts) :when (not (option-keys k))]
+    (throw (unknown-key-error "a simulation's options" k option-keys {:options opts})))
+  (check-solver! solver)
   (when-not (and (sequential? gravity) (= 3 (count gravity)) (every? util/finite? gravity))
     (throw (ex-info (str ":gravity must be [x y z], finite numbers, not " (pr-str gravity)) opts)))
   (when-not (or (nil? floor) (util/finite? floor)
@@ -98,6 +148,33 @@
   (try (body/joint-records creature) true
        (catch clojure.lang.ExceptionInfo _ false)))
 
+(defn- time-scale
+  "The time scale of `creature`'s Physics tab (1 for a creature without
+  one): physics seconds per second."
+  ^double [^Node creature]
+  (double (or (:time-scale (.getUserData creature ^String physics-tab/simulation-key)) 1.0)))
+
+(defn- set-solver!
+  "Override `space`'s solver iterations and substeps with those `solver`
+  gives (see `solver-keys`); a creature's Physics tab has set its own by
+  now, when it has one."
+  [^PhysicsSpace space solver time-scale]
+  (when-let [n (:iterations solver)]
+    (.setSolverNumIterations space (int n)))
+  (when-let [k (:substeps solver)]
+    (.setAccuracy space (float (physics-tab/substep-length time-scale k)))
+    (.setMaxSubSteps space (int k))))
+
+(defn- solver-of
+  "How a simulation steps, {:iterations n :substeps k}: what `solver`
+  asked for, else the creature's Physics tab, else Bullet's defaults
+  (10 and 1)."
+  [^PhysicsSpace space solver ^Node creature]
+  {:iterations (.getSolverNumIterations space)
+   :substeps (long (or (:substeps solver)
+                       (:substeps (.getUserData creature ^String physics-tab/simulation-key))
+                       1))})
+
 (defn simulation
   "A simulation of `creature` (a creature Node; given its body with
   cortex.body/body! unless it has one) in a new PhysicsSpace, with
@@ -107,7 +184,10 @@
   :time; all by default), :eyes (true, or a map of eye name to options:
   what the creature's eyes see is observed too, drawn offscreen on a
   GL context of the simulation's own; see cortex.sight and the vision
-  chapter). Use it from one thread at a time; `destroy!` frees it."
+  chapter), :solver ({:iterations n :substeps k}, either or both:
+  overrides Bullet's defaults of 10 and 1, or a Physics-tab creature's
+  file; see `check-solver!`). Any other key is an error. Use it from
+  one thread at a time; `destroy!` frees it."
   ([creature] (simulation creature {}))
   ([^Node creature opts]
    (let [{:keys [gravity floor observe] :as opts}
@@ -121,11 +201,13 @@
          sensors (p/sensors creature)
          g (util/vec3 gravity)]
      (engine/add-all! space root)
+     (set-solver! space (:solver opts) (time-scale creature))
      (.setGravity space g)
      (doseq [^PhysicsRigidBody b (.getRigidBodyList space)]
        (.setGravity b g)
        (.activate b))
      {:space space :creature creature :root root :observe (set observe)
+      :solver (solver-of space (:solver opts) creature)
       :sensors sensors
       :muscles (into {} (for [s sensors] [(:name s) (muscle/muscle s)]))
       :segments (mapv (fn [[n ^Geometry g rb]]
@@ -146,6 +228,12 @@
       ;; simulation without eyes loads no OpenGL
       :sight (when-let [eyes (:eyes opts)]
                ((requiring-resolve 'cortex.sight/open!) creature root eyes))})))
+
+(defn solver
+  "How `sim` steps: {:iterations n :substeps k}, the constraint solver's
+  passes per Bullet step and Bullet steps per 1/60 s step."
+  [sim]
+  (:solver sim))
 
 (defn steps
   "How many steps `sim` has taken."
@@ -211,7 +299,9 @@
    (let [es (when (seq actions) (muscle/efforts muscles actions))]
      (when es (muscle/apply-efforts! muscles es))
      (aset last-efforts 0 es))
-   (.update space (float tpf) (int max-sub-steps))
+   ;; the space's own limit on substeps: four, or what :solver or the
+   ;; creature's Physics tab set
+   (.update space (float tpf))
    (.distributeEvents space)
    (aset steps 0 (inc (aget steps 0)))
    (observe sim)))

@@ -7,7 +7,8 @@
   Entry points: `load-blender-model` (the reader, loaded lazily),
   `asset-manager`, `box`, `sphere`, `nodify`, `node-seq`,
   `blender-to-jme`, `jme-to-blender`, `blender-axes`, `vec3`,
-  `finite?`, `light-up-everything`, `display-dilated-time`,
+  `finite?`, `edit-distance`, `near-miss` (the key an unknown key
+  misspells), `light-up-everything`, `display-dilated-time`,
   `println-repl`."
   ;; the physics engine (org/engine.org): native Bullet loads its library here
   (:require [cortex.engine])
@@ -52,6 +53,32 @@
   the physics."
   [x]
   (and (number? x) (Double/isFinite (double x))))
+
+(defn edit-distance
+  "Levenshtein distance between strings `a` and `b`: the fewest letters
+  inserted, deleted or changed to turn one into the other."
+  [^String a ^String b]
+  (peek (reduce (fn [prev ca]
+                  (reduce (fn [row [j cb]]
+                            (conj row (min (inc (peek row)) (inc (prev (inc j)))
+                                           (+ (prev j) (if (= ca cb) 0 1)))))
+                          [(inc (first prev))]
+                          (map-indexed vector b)))
+                (vec (range (inc (count b))))
+                a)))
+
+(defn near-miss
+  "The keyword of `known` that the unknown keyword `k` most likely
+  misspells (within two letters; the nearest, then the first by name),
+  or nil: what an error about an unknown key suggests instead."
+  [k known]
+  (when (keyword? k)
+    (->> (sort-by name known)
+         (map (fn [c] [(long (edit-distance (name k) (name c))) c]))
+         (filter #(<= (long (first %)) 2))
+         (sort-by first)
+         first
+         second)))
 
 (defn vec3
   "The Vector3f of three numbers `[x y z]`."

@@ -68,8 +68,10 @@
 
 (defn drop!
   "Drop `creature` (a Node, not yet built) with its lowest point 1 m
-  above a floor of `friction` for 10 s; what happened."
-  [^Node creature friction]
+  above a floor of `friction` for 10 s, simulated with `opts` besides
+  the floor (cortex.sim/simulation's; none by default); what happened."
+  ([creature friction] (drop! creature friction {}))
+  ([^Node creature friction opts]
   (let [[lo hi] (extent creature)
         ;; moved before its bodies are made: a RigidBodyControl takes its
         ;; place from its Geometry only when it is attached
@@ -78,7 +80,7 @@
         limit (+ 1.0 (Math/sqrt (* 2 9.81 (+ 1.0 (- hi lo)))))
         described (into {} (map (juxt :name :description)) (body/joint-records creature))
         sensors (p/sensors creature)
-        s (sim/simulation creature {:floor {:height 0 :friction friction}})
+        s (sim/simulation creature (assoc opts :floor {:height 0 :friction friction}))
         ;; how far past its limits each joint is, in the limits' terms
         ;; and in proprioception's (see the text)
         past (fn [] (into {} (for [{n :name :as sensor} sensors]
@@ -96,7 +98,7 @@
         worst (fn [k] (apply max 0.0 (for [ps pasts [n p] ps] (- (p k) ((start-past n) k)))))]
     {:fastest (apply max (map speed obs)) :limit limit
      :worst-past (worst 0) :worst-past-proprioception (worst 1)
-     :still-at (when (< still-from 600) (/ still-from 60.0)) :moved moved}))
+     :still-at (when (< still-from 600) (/ still-from 60.0)) :moved moved})))
 
 (defn- chain-100 []
   ((requiring-resolve 'cortex.bench.creatures/creature)
@@ -160,3 +162,12 @@
           (is (> with-rows 0.29) "the beam reaches its limit")
           (is (< with-rows 0.31) (format "with the rows it stops %.4f past" (- with-rows 0.3)))
           (is (> without 0.32) (format "jBullet's limit alone lets it %.4f past" (- without 0.3))))))))
+
+(deftest four-substeps-keep-the-hand-within-its-limits
+  (doseq [friction [0.25 0.5 1.0]
+          :let [{:keys [worst-past fastest limit still-at]}
+                (drop! (util/load-blender-model (creatures "hand")) friction {:solver {:substeps 4}})]]
+    (testing (str "hand on friction " friction)
+      (is (< worst-past 1.0) (format "a joint went %.2f times its allowance past its limit" worst-past))
+      (is (< fastest limit))
+      (is (some? still-at)))))

@@ -42,9 +42,12 @@
 (deftest rollouts-equal-rollouts-one-at-a-time
   (let [specs (vec (concat (for [seed (range 6)]
                              (assoc worm :seconds 3 :seed seed :start {:shift 0.3 :turn 0.2}))
-                           [hand (assoc hand :params {:amplitude 0.5})]))
+                           [hand (assoc hand :params {:amplitude 0.5})
+                            ;; the first worm again, stepped finer: its own solver is used
+                            (assoc worm :seconds 3 :seed 0 :start {:shift 0.3 :turn 0.2}
+                                   :solver {:iterations 20 :substeps 2})]))
         alone (mapv r/rollout specs)]
-    (is (= 8 (count (set (map :final-pose alone)))) "every spec moved differently")
+    (is (= 9 (count (set (map :final-pose alone)))) "every spec moved differently")
     (is (= alone (r/rollouts specs {:threads 2})))
     (is (= alone (r/rollouts specs {:threads 3})))
     (is (= alone (r/rollouts specs)))
@@ -98,7 +101,9 @@
              [(assoc worm :params {:frequency 0}) :params #":frequency must be a positive number"]
              [(assoc worm :params {:rise 1.5}) :params #":rise must be a fraction"]
              [(assoc worm :trajectory 0) :trajectory #"positive whole"]
-             [(assoc worm :sceonds 3) :sceonds #"unknown key"]
+             [(assoc worm :sceonds 3) :sceonds #"unknown key; did you mean :seconds\?"]
+             [(assoc worm :solver {:substeps 0}) :solver #":substeps must be a whole number from 1 to 64"]
+             [(assoc worm :solver {:iteration 20}) :solver #"did you mean :iterations\?"]
              [(assoc worm :eyes true) :eyes #"rollouts run without eyes.*org/vision\.org"]]]
       (let [[message data] (failure [good bad])]
         (is (= {:index 1 :field field} data) (pr-str bad))

@@ -127,9 +127,53 @@
 (deftest bad-options-are-named
   (doseq [[opts pattern] [[{:gravity [0 -9.81]} #":gravity"]
                           [{:floor "low"} #":floor"]
-                          [{:observe #{:smell}} #":observe"]]]
+                          [{:observe #{:smell}} #":observe"]
+                          [{:flor 0} #"no key :flor; did you mean :floor\? It takes :eyes, :floor"]
+                          [{:solver 20} #":solver must be a map"]
+                          [{:solver {:iterations 0}} #":solver :iterations must be a whole number from 1 to 1000, not 0"]
+                          [{:solver {:substeps 2.5}} #":solver :substeps must be a whole number from 1 to 64"]
+                          [{:solver {:substep 2}} #":solver has no key :substep; did you mean :substeps\?"]]]
     (is (thrown-with-msg? clojure.lang.ExceptionInfo pattern
                           (sim/simulation (util/load-blender-model f/worm-path) opts)))))
+
+(defn- speed-gained-in-a-second
+  "The vertical speed the worm's first segment gains over the 60 steps
+  after the first, with no floor, how many Bullet steps they took, and
+  the simulation's solver, under `opts`."
+  [opts]
+  (let [s (sim/simulation (util/load-blender-model f/worm-path) opts)
+        ticks (atom 0)
+        vy #(get-in (sim/observe s #{:segments}) [:segments "worm-1" :velocity 1])]
+    (sim/step! s)
+    (.addTickListener ^com.jme3.bullet.PhysicsSpace (:space s)
+                      (reify com.jme3.bullet.PhysicsTickListener
+                        (prePhysicsTick [_ _ _] (swap! ticks inc))
+                        (physicsTick [_ _ _])))
+    (let [v0 (double (vy))]
+      (dotimes [_ 60] (sim/step! s))
+      [(- v0 (double (vy))) @ticks (sim/solver s)])))
+
+(deftest the-solver-can-be-chosen
+  (doseq [[opts solver] [[{} {:iterations 10 :substeps 1}]
+                         [{:solver {:iterations 25}} {:iterations 25 :substeps 1}]
+                         [{:solver {:substeps 8}} {:iterations 10 :substeps 8}]]
+          :let [[gained ticks seen] (speed-gained-in-a-second opts)
+                k (:substeps solver)]]
+    (testing (pr-str opts)
+      (is (= solver seen))
+      (is (= (* 60 k) ticks) "every substep is a Bullet step")
+      (is (< (Math/abs (- gained 9.81)) 0.01)
+          (format "gained %.4f m/s in a second" gained))))
+  (testing "a Physics-tab creature steps as its file says, unless :solver says otherwise"
+    (let [make #((requiring-resolve 'cortex.physics-tab/physics-body!)
+                 ((requiring-resolve 'cortex.physics-tab/load-creature) "test/fixtures/physics-sim/substeps.blend"))
+          file (sim/simulation (make) {})
+          ours (sim/simulation (make) {:solver {:iterations 12 :substeps 4}})]
+      (is (= {:iterations 4 :substeps 2} (sim/solver file)))
+      (is (= {:iterations 12 :substeps 4} (sim/solver ours)))
+      (testing "at the file's time scale of 0.5: four substeps of 0.5/240 s"
+        (is (< (Math/abs (- (* 4 (.getAccuracy ^com.jme3.bullet.PhysicsSpace (:space ours))) (/ 0.5 60)))
+               1e-6))))))
 
 (deftest sync-moves-the-geometries
   (let [s (sim/simulation (util/load-blender-model f/worm-path) {:floor 0})]
