@@ -19,10 +19,7 @@
            (com.jme3.scene Geometry Node)
            (com.jme3.bullet PhysicsSpace)
            (com.jme3.bullet.joints HingeJoint SixDofJoint)
-           (com.bulletphysics.dynamics RigidBody)
-           (com.bulletphysics.dynamics.constraintsolver ContactSolverInfo SequentialImpulseConstraintSolver
-                                                        SolverBody SolverMode TypedConstraint)
-           (com.bulletphysics.util ObjectArrayList)
+           (com.bulletphysics.dynamics.constraintsolver ContactSolverInfo SolverMode)
            (java.lang.management ManagementFactory)))
 
 (def creatures
@@ -33,42 +30,16 @@
    ["chain-100" #((requiring-resolve 'cortex.bench.creatures/creature)
                   ((requiring-resolve 'cortex.bench.creatures/chain) 100))]])
 
-(def ^:private ^java.lang.reflect.Field solver-bodies
-  (doto (.getDeclaredField SequentialImpulseConstraintSolver "tmpSolverBodyPool")
-    (.setAccessible true)))
-
-(defn tail-solver
-  "jBullet's solver, but after its iterations it solves the joints
-  `passes` times more (only cortex's limit rows when `rows-only?`), so
-  that they, not the contacts, have the last word in each step."
-  [passes rows-only?]
-  (proxy [SequentialImpulseConstraintSolver] []
-    (solveGroupCacheFriendlyIterations [bodies nb manifolds moff nm constraints coff nc info dd]
-      (let [r (proxy-super solveGroupCacheFriendlyIterations bodies nb manifolds moff nm
-                           constraints coff nc info dd)
-            ^ObjectArrayList pool (.get solver-bodies this)
-            ^ObjectArrayList constraints constraints
-            sync! (fn [^RigidBody b write?]
-                    (when (and (>= (.getIslandTag b) 0) (>= (.getCompanionId b) 0))
-                      (let [^SolverBody sb (.getQuick pool (.getCompanionId b))]
-                        (if write? (.writebackVelocity sb) (.readVelocity sb)))))]
-        (dotimes [_ passes]
-          (dotimes [j (int nc)]
-            (let [^TypedConstraint c (.getQuick constraints (+ (int coff) j))]
-              (when (or (not rows-only?) (instance? cortex.JointLimit c))
-                (sync! (.getRigidBodyA c) true) (sync! (.getRigidBodyB c) true)
-                (.solveConstraint c (.timeStep ^ContactSolverInfo info))
-                (sync! (.getRigidBodyA c) false) (sync! (.getRigidBodyB c) false)))))
-        r))))
-
 (defn configure!
   "Apply config `cfg` to simulation `s` of `creature`."
   [cfg s creature]
   (let [^PhysicsSpace space (:space s)
         ^ContactSolverInfo info (.getSolverInfo (.getDynamicsWorld space))]
-    (when-let [{:keys [passes rows-only]} (:tail cfg)]
+    ;; {:tail {:passes n}}: cortex.LimitSolver's passes (0: none,
+    ;; jBullet's solver as it is)
+    (when-let [{:keys [passes]} (:tail cfg)]
       (.setConstraintSolver ^com.bulletphysics.dynamics.DiscreteDynamicsWorld (.getDynamicsWorld space)
-                            (tail-solver (long passes) (boolean rows-only))))
+                            (cortex.LimitSolver. (int passes))))
     (when-let [n (:iterations cfg)] (set! (.numIterations info) (int n)))
     (when-let [v (:erp cfg)] (set! (.erp info) (float v)))
     (when-let [v (:erp2 cfg)] (set! (.erp2 info) (float v)))
