@@ -10,7 +10,8 @@
   `steps`, `sim-time`, `last-efforts` (the torques the last step applied),
   `solver` (its solver iterations and substeps), `check-solver!`,
   `destroy!`."
-  (:require [cortex.body :as body]
+  (:require [clojure.string :as str]
+            [cortex.body :as body]
             [cortex.engine :as engine]
             [cortex.muscle :as muscle]
             [cortex.physics-tab :as physics-tab]
@@ -102,7 +103,7 @@
   (let [near (util/near-miss k known)]
     (ex-info (str what " has no key " (pr-str k)
                   (when near (str "; did you mean " near "?"))
-                  " It takes " (clojure.string/join ", " (sort known)))
+                  " It takes " (str/join ", " (sort known)))
              (assoc data :key k :known (vec (sort known))))))
 
 (defn check-solver!
@@ -127,7 +128,7 @@
 (defn- check-options!
   [{:keys [gravity floor observe solver] :as opts}]
   (doseq [k (keys opts) :when (not (option-keys k))]
-    (throw (unknown-key-error "a simulation's options" k option-keys {:options opts})))
+    (throw (unknown-key-error "a simulation" k option-keys {:options opts})))
   (check-solver! solver)
   (when-not (and (sequential? gravity) (= 3 (count gravity)) (every? util/finite? gravity))
     (throw (ex-info (str ":gravity must be [x y z], finite numbers, not " (pr-str gravity)) opts)))
@@ -148,11 +149,12 @@
   (try (body/joint-records creature) true
        (catch clojure.lang.ExceptionInfo _ false)))
 
-(defn- time-scale
-  "The time scale of `creature`'s Physics tab (1 for a creature without
-  one): physics seconds per second."
-  ^double [^Node creature]
-  (double (or (:time-scale (.getUserData creature ^String physics-tab/simulation-key)) 1.0)))
+(defn- tab-settings
+  "The settings of `creature`'s Physics tab (see
+  cortex.physics-tab/simulation-settings), nil for a creature without
+  one."
+  [^Node creature]
+  (.getUserData creature ^String physics-tab/simulation-key))
 
 (defn- set-solver!
   "Override `space`'s solver iterations and substeps with those `solver`
@@ -171,9 +173,7 @@
   (10 and 1)."
   [^PhysicsSpace space solver ^Node creature]
   {:iterations (.getSolverNumIterations space)
-   :substeps (long (or (:substeps solver)
-                       (:substeps (.getUserData creature ^String physics-tab/simulation-key))
-                       1))})
+   :substeps (long (or (:substeps solver) (:substeps (tab-settings creature)) 1))})
 
 (defn simulation
   "A simulation of `creature` (a creature Node; given its body with
@@ -201,7 +201,7 @@
          sensors (p/sensors creature)
          g (util/vec3 gravity)]
      (engine/add-all! space root)
-     (set-solver! space (:solver opts) (time-scale creature))
+     (set-solver! space (:solver opts) (double (:time-scale (tab-settings creature) 1.0)))
      (.setGravity space g)
      (doseq [^PhysicsRigidBody b (.getRigidBodyList space)]
        (.setGravity b g)
