@@ -35,11 +35,11 @@
   [cfg s creature]
   (let [^PhysicsSpace space (:space s)
         ^ContactSolverInfo info (.getSolverInfo (.getDynamicsWorld space))]
-    ;; {:tail {:passes n}}: cortex.LimitSolver's passes (0: none,
-    ;; jBullet's solver as it is)
-    (when-let [{:keys [passes]} (:tail cfg)]
+    ;; {:tail {:passes n :points p}}: cortex.LimitSolver's passes (0:
+    ;; none, jBullet's solver as it is), holding the pivots too when p
+    (when-let [{:keys [passes points]} (:tail cfg)]
       (.setConstraintSolver ^com.bulletphysics.dynamics.DiscreteDynamicsWorld (.getDynamicsWorld space)
-                            (cortex.LimitSolver. (int passes))))
+                            (cortex.LimitSolver. (int passes) (boolean points))))
     (when-let [n (:iterations cfg)] (set! (.numIterations info) (int n)))
     (when-let [v (:erp cfg)] (set! (.erp info) (float v)))
     (when-let [v (:erp2 cfg)] (set! (.erp2 info) (float v)))

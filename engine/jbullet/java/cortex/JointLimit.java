@@ -4,6 +4,8 @@ package cortex;
 import com.bulletphysics.dynamics.RigidBody;
 import com.bulletphysics.dynamics.constraintsolver.TypedConstraint;
 import com.bulletphysics.dynamics.constraintsolver.TypedConstraintType;
+import com.bulletphysics.linearmath.Transform;
+import javax.vecmath.Matrix3f;
 import javax.vecmath.Quat4f;
 import javax.vecmath.Vector3f;
 
@@ -30,6 +32,11 @@ public class JointLimit extends TypedConstraint {
     public float erp = 0f;
     public boolean speculative = true;
     public double activation = 0.3;
+    /** The joint's pivot in each body's frame (its centre of mass and
+     * principal axes), for `solveTail`'s point rows; null: none. */
+    public Vector3f pivotA, pivotB;
+    /** How much of the pivots' gap `solveTail`'s point rows close per step. */
+    public float pointErp = 0.2f;
 
     final Vector3f[] dir = new Vector3f[6];
     final double[] k = new double[6], c = new double[6], acc = new double[6];
@@ -120,6 +127,70 @@ public class JointLimit extends TypedConstraint {
             row(swingZ - sz, az, -1);
             row(sz + swingZ, az, 1);
         }
+    }
+
+    /**
+     * What cortex.LimitSolver solves after the solver's iterations: the
+     * joint's pivots held together (a ball joint's three rows, solved
+     * as one block, closing `pointErp` of their gap per step) when
+     * `pivotA` is set, then the limit rows.
+     */
+    public void solveTail(float timeStep, boolean points) {
+        solveConstraint(timeStep);
+        if (points && pivotA != null && pushing()) solvePoint(timeStep);
+    }
+
+    /** Whether any of the limit rows pushes in this step. */
+    boolean pushing() {
+        for (int i = 0; i < rows; i++) if (acc[i] > 0) return true;
+        return false;
+    }
+
+    static void addCrossTerm(Matrix3f k, Matrix3f inv, Vector3f r) {
+        // k += [r]x^T inv [r]x
+        Matrix3f s = new Matrix3f(0, -r.z, r.y, r.z, 0, -r.x, -r.y, r.x, 0);
+        Matrix3f st = new Matrix3f(s);
+        st.transpose();
+        st.mul(inv);
+        st.mul(s);
+        k.add(st);
+    }
+
+    void solvePoint(float timeStep) {
+        RigidBody a = getRigidBodyA(), b = getRigidBodyB();
+        Transform ta = a.getCenterOfMassTransform(new Transform());
+        Transform tb = b.getCenterOfMassTransform(new Transform());
+        Vector3f ra = new Vector3f(pivotA), rb = new Vector3f(pivotB);
+        ta.basis.transform(ra);
+        tb.basis.transform(rb);
+        Vector3f gap = new Vector3f(tb.origin);
+        gap.add(rb);
+        gap.sub(ta.origin);
+        gap.sub(ra);
+        Vector3f va = new Vector3f(), vb = new Vector3f(), w = new Vector3f();
+        a.getLinearVelocity(va);
+        w.cross(a.getAngularVelocity(new Vector3f()), ra);
+        va.add(w);
+        b.getLinearVelocity(vb);
+        w.cross(b.getAngularVelocity(new Vector3f()), rb);
+        vb.add(w);
+        // the change of relative pivot velocity wanted: to -erp gap / dt
+        Vector3f rhs = new Vector3f(gap);
+        rhs.scale(-pointErp / timeStep);
+        rhs.sub(vb);
+        rhs.add(va);
+        Matrix3f k = new Matrix3f();
+        float m = a.getInvMass() + b.getInvMass();
+        k.setIdentity();
+        k.mul(m);
+        addCrossTerm(k, a.getInvInertiaTensorWorld(new Matrix3f()), ra);
+        addCrossTerm(k, b.getInvInertiaTensorWorld(new Matrix3f()), rb);
+        if (Math.abs(k.determinant()) < 1e-12f) return;
+        k.invert();
+        k.transform(rhs);
+        b.applyImpulse(rhs, rb);
+        rhs.negate();
+        a.applyImpulse(rhs, ra);
     }
 
     @Override

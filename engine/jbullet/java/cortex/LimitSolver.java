@@ -30,11 +30,14 @@ public class LimitSolver extends SequentialImpulseConstraintSolver {
 
     /** How many times the limit rows are solved after the iterations. */
     public final int passes;
+    /** Whether those passes hold the joints' pivots together too. */
+    public final boolean points;
     private final ObjectArrayList<SolverBody> solverBodies;
 
     @SuppressWarnings("unchecked")
-    public LimitSolver(int passes) {
+    public LimitSolver(int passes, boolean points) {
         this.passes = passes;
+        this.points = points;
         try {
             solverBodies = (ObjectArrayList<SolverBody>) SOLVER_BODIES.get(this);
         } catch (IllegalAccessException e) {
@@ -63,7 +66,7 @@ public class LimitSolver extends SequentialImpulseConstraintSolver {
                 RigidBody a = c.getRigidBodyA(), b = c.getRigidBodyB();
                 sync(a, true);
                 sync(b, true);
-                c.solveConstraint(info.timeStep);
+                ((JointLimit) c).solveTail(info.timeStep, points);
                 sync(a, false);
                 sync(b, false);
             }

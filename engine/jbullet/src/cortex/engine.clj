@@ -411,6 +411,10 @@
                            (double lo) (double hi)))
             (JointLimit. a b ^doubles (da frame-a) ^doubles (da frame-b)
                          (double twist) (double limit-xz) (double limit-xy)))]
+    (let [^JointLimit l l
+          vec (fn [^Vector3f v] (javax.vecmath.Vector3f. (.x v) (.y v) (.z v)))]
+      (set! (.pivotA l) (vec (.getPivotA joint)))
+      (set! (.pivotB l) (vec (.getPivotB joint))))
     (.put limit-rows joint [(.incrementAndGet limit-sequence) l])
     joint))
 
