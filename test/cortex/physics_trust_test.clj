@@ -41,12 +41,26 @@
     0.0))
 
 (defn- euler-xyz
-  "The Euler angles [x y z] of the rotation matrix `m`, as Bullet's
-  6-DOF joints read them (m = Rx Ry Rz)."
+  "The Euler angles [x y z] of the relative rotation `m` as Bullet's
+  6-DOF joints read them: Bullet reads its relative frame column by
+  column (jBullet's getMatrixElem(i) is element (i mod 3, i div 3)), so
+  the angles are those of the inverse rotation, m^-1 = Rx Ry Rz."
   [^Matrix3f m]
-  [(Math/atan2 (- (.get m 1 2)) (.get m 2 2))
-   (Math/asin (max -1.0 (min 1.0 (double (.get m 0 2)))))
-   (Math/atan2 (- (.get m 0 1)) (.get m 0 0))])
+  [(Math/atan2 (- (.get m 2 1)) (.get m 2 2))
+   (Math/asin (max -1.0 (min 1.0 (double (.get m 2 0)))))
+   (Math/atan2 (- (.get m 1 0)) (.get m 0 0))])
+
+(defn cone-angles
+  "[angles limits] of the cone joint `sensor` (cortex.proprioception) of
+  description `d` now: its three angles as its engine reads them (the
+  Euler angles of its relative rotation in the frame body! gives the
+  engine, turned when the wider swing is about jME's Y, see the body
+  chapter) and the limits body! gave them."
+  [sensor d]
+  (let [[^Matrix3f turn limits] (#'body/cone-limits (:limit-xz d) (:limit-xy d) (:twist d))
+        [x y z w] (p/relative-rotation sensor)
+        r (.toRotationMatrix (Quaternion. (float x) (float y) (float z) (float w)))]
+    [(euler-xyz (.mult (.transposeNew turn) (.mult r turn))) limits]))
 
 (defn limit-overshoot
   "How far past its limits the joint `sensor` (cortex.proprioception)
@@ -58,10 +72,7 @@
   [{:keys [type] :as sensor} d]
   (case type
     :hinge (overshoot (p/joint-state sensor) d)
-    :cone (let [[^Matrix3f turn limits] (#'body/cone-limits (:limit-xz d) (:limit-xy d) (:twist d))
-                [x y z w] (p/relative-rotation sensor)
-                r (.toRotationMatrix (Quaternion. (float x) (float y) (float z) (float w)))
-                angles (euler-xyz (.mult (.transpose turn) (.mult r turn)))]
+    :cone (let [[angles limits] (cone-angles sensor d)]
             (/ (reduce max 0.0 (map (fn [a l] (- (Math/abs (double a)) (double l))) angles limits))
                0.1))
     0.0))
@@ -162,6 +173,30 @@
           (is (> with-rows 0.29) "the beam reaches its limit")
           (is (< with-rows 0.31) (format "with the rows it stops %.4f past" (- with-rows 0.3)))
           (is (> without 0.32) (format "jBullet's limit alone lets it %.4f past" (- without 0.3))))))))
+
+(deftest cones-are-read-as-their-engine-reads-them
+  ;; jBullet's joint gives its own angles; the cone's empty is turned,
+  ;; and its wider swing is about jME's Y, so that body! turns its frame
+  (when (= :jbullet engine/name)
+    (let [c (body/body! ((requiring-resolve 'cortex.joint-fixtures/two-segments)
+                         "{:type :cone :limit-xz 0.3 :limit-xy 0.9 :twist 0.5}"
+                         ((requiring-resolve 'cortex.joint-fixtures/turned) 0.7 [1 2 3])))
+          rec (first (body/joint-records c))
+          sensor (first (p/sensors c))
+          ^com.bulletphysics.dynamics.constraintsolver.Generic6DofConstraint
+          six (.getObjectId ^com.jme3.bullet.joints.PhysicsJoint (:physics-joint rec))
+          ^com.jme3.bullet.control.RigidBodyControl lower
+          (.getControl ^Geometry (second (body/segments c)) com.jme3.bullet.control.RigidBodyControl)
+          start (.getPhysicsRotation lower)]
+      (doseq [[angle axis] [[0.4 [1 0 0]] [0.8 [0 1 1]] [1.2 [-1 2 0.5]]]]
+        (.setPhysicsRotation lower (.mult ((requiring-resolve 'cortex.joint-fixtures/turned) angle axis) start))
+        (.calculateTransforms six)
+        (let [[ours] (cone-angles sensor (:description rec))
+              engine (mapv #(double (.getAngle six (int %))) (range 3))]
+          (testing (pr-str angle axis)
+            (is (some #(> (Math/abs (double %)) 0.1) engine) "the pose is not at rest")
+            (is (every? #(< (Math/abs (double %)) 1e-4) (map - ours engine))
+                (str "ours " ours ", the engine's " engine))))))))
 
 (deftest four-substeps-keep-the-hand-within-its-limits
   (doseq [friction [0.25 0.5 1.0]
