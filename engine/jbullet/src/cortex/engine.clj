@@ -358,6 +358,14 @@
   "The class of the joint `six-dof-joint` makes."
   com.jme3.bullet.joints.SixDofJoint)
 
+(defn six-dof-angles
+  "The three angles [x y z] the six-DOF `joint` (see `six-dof-joint`)
+  reads between its bodies as they are now, the ones its limits hold."
+  [^com.jme3.bullet.joints.SixDofJoint joint]
+  (let [^com.bulletphysics.dynamics.constraintsolver.Generic6DofConstraint c (.getObjectId joint)]
+    (.calculateTransforms c)
+    (mapv #(double (.getAngle c (int %))) (range 3))))
+
 (defn six-dof-joint
   "A joint between the bodies of `control-a` and `control-b` at
   `pivot-a`, `pivot-b` whose translation is locked and whose three

@@ -423,6 +423,13 @@
   "The class of the joint `six-dof-joint` makes."
   com.jme3.bullet.joints.New6Dof)
 
+(defn six-dof-angles
+  "The three angles [x y z] the six-DOF `joint` (see `six-dof-joint`)
+  reads between its bodies as they are now, the ones its limits hold."
+  [^com.jme3.bullet.joints.New6Dof joint]
+  (let [v (.getAngles joint (Vector3f.))]
+    [(double (.x v)) (double (.y v)) (double (.z v))]))
+
 (defn six-dof-joint
   "A joint between the bodies of `control-a` and `control-b` at
   `pivot-a`, `pivot-b` whose translation is locked and whose three
