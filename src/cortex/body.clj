@@ -752,21 +752,31 @@
                       :limit (mapv double limit)}))))
 
 (defn- cone-limits
-  "[frame-turn [twist y-limit z-limit]] for a cone of swing limits `xz`
-  (about Blender's Y, jME's Z) and `xy` (about Blender's Z, jME's Y) and
-  `twist`: the turn about X that puts the wider swing on jME's Z
-  (identity when it is there already), and the three limits in the
-  turned frame, none exactly 0, Y's at most 1.5."
+  "[frame-turn [x-limit y-limit z-limit]] for a cone of swing limits
+  `xz` (about Blender's Y, jME's Z) and `xy` (about Blender's Z, jME's Y)
+  and `twist` (about X): the turn of the joint's frame that puts the
+  narrower swing on the engine's middle Euler angle (Y), the wider on Z
+  and the twist on X (identity when the swing about jME's Y is already
+  the narrower), or, when even the narrower swing is wider than the
+  engine's `six-dof-safe-middle` and the twist narrower than it, the
+  twist in the middle,
+  the swing about jME's Z on X and the other on Z; and the three limits
+  in the turned frame, none exactly 0, Y's at most 1.5."
   [xz xy twist]
-  (let [swap? (> (double xy) (double xz))
-        ;; turned a quarter about X, the frame's Y is jME's Z and its Z
-        ;; is jME's -Y
-        turn (if swap?
-               (.toRotationMatrix (doto (Quaternion.) (.fromAngleAxis (float (/ Math/PI 2)) Vector3f/UNIT_X)))
-               (Matrix3f.))
-        [y z] (if swap? [xz xy] [xy xz])
-        open #(max 1e-4 (double %))]
-    [turn [(open twist) (min 1.5 (open y)) (open z)]]))
+  (let [open #(max 1e-4 (double %))
+        [t y z] [(double twist) (double xy) (double xz)]
+        quarter-about-x (.toRotationMatrix (doto (Quaternion.) (.fromAngleAxis (float (/ Math/PI 2))
+                                                                               Vector3f/UNIT_X)))
+        [turn [lx ly lz]]
+        (cond
+          ;; the frame's X, Y, Z are the joint's Z, X, Y
+          (and (> (min y z) (double engine/six-dof-safe-middle)) (< t (min y z)))
+          [(Matrix3f. 0 1 0, 0 0 1, 1 0 0) [z t y]]
+          (<= y z) [(Matrix3f.) [t y z]]
+          ;; turned a quarter about X, the frame's Y is jME's Z and its Z
+          ;; is jME's -Y
+          :else [quarter-about-x [t z y]])]
+    [turn [(open lx) (min 1.5 (open ly)) (open lz)]]))
 
 (defmethod joint-dispatch :cone
   [constraints control-a control-b pivot-a pivot-b ^Matrix3f rotation]

@@ -8,7 +8,7 @@
             [cortex.world :as world])
   (:import (com.jme3.bullet.control RigidBodyControl)
            (com.jme3.bullet.joints HingeJoint PhysicsJoint SixDofJoint ConeJoint)
-           (com.jme3.math FastMath Quaternion Vector3f)
+           (com.jme3.math FastMath Matrix3f Quaternion Vector3f)
            (com.jme3.scene Geometry Node VertexBuffer$Type)
            (com.jme3.scene.shape Box Sphere)))
 
@@ -398,8 +398,20 @@
 
 (deftest cone-limits-are-on-their-named-axes
   (let [quarter-about-x (doto (Quaternion.) (.fromAngleAxis (/ FastMath/PI 2) Vector3f/UNIT_X))]
-    (doseq [[xz xy] [[0.9 0.3] [0.3 0.9]]
+    ;; the last: both swings wide, so that on jBullet the twist goes
+    ;; in the middle
+    (doseq [[xz xy] [[0.9 0.3] [0.3 0.9] [1.3 1.25]]
             :let [text (format "{:type :cone :limit-xz %s :limit-xy %s :twist 0.1}" xz xy)]]
       (testing text
         (is (< (Math/abs (- (hang text Quaternion/IDENTITY) (double xz))) 0.05) "swung about Blender's Y")
         (is (< (Math/abs (- (hang text quarter-about-x) (double xy))) 0.05) "swung about Blender's Z")))))
+
+(deftest wide-cones-keep-their-twist-in-the-middle
+  (let [[turn limits] (#'body/cone-limits 1.48 1.48 0.0)
+        x (.mult ^Matrix3f turn Vector3f/UNIT_Y)]
+    (if (< (double engine/six-dof-safe-middle) 1.48)
+      (do (is (= [1.48 1.0E-4 1.48] limits))
+          (is (< (.distance x Vector3f/UNIT_X) 1e-6) "the engine's middle axis is the twist's"))
+      (is (= [1.0E-4 1.48 1.48] limits))))
+  (testing "a cone whose narrower swing is safe in the middle keeps it there"
+    (is (= [0.3 0.6 0.6] (second (#'body/cone-limits 0.6 0.6 0.3))))))

@@ -358,6 +358,13 @@
   "The class of the joint `six-dof-joint` makes."
   com.jme3.bullet.joints.SixDofJoint)
 
+(def six-dof-safe-middle
+  "The widest limit cortex gives a six-DOF joint's middle angle when it
+  has the choice (see the body chapter's cones): jBullet does not
+  normalise the joint's axes, which near a right angle push its limits
+  by 1/cos of the angle."
+  1.2)
+
 (defn six-dof-angles
   "The three angles [x y z] the six-DOF `joint` (see `six-dof-joint`)
   reads between its bodies as they are now, the ones its limits hold."

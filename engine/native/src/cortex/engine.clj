@@ -423,6 +423,12 @@
   "The class of the joint `six-dof-joint` makes."
   com.jme3.bullet.joints.New6Dof)
 
+(def six-dof-safe-middle
+  "The widest limit cortex gives a six-DOF joint's middle angle when it
+  has the choice (see the body chapter's cones): Bullet's New6Dof
+  normalises its axes, so the cap of 1.5 is enough."
+  1.5)
+
 (defn six-dof-angles
   "The three angles [x y z] the six-DOF `joint` (see `six-dof-joint`)
   reads between its bodies as they are now, the ones its limits hold."
