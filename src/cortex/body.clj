@@ -759,9 +759,9 @@
   and the twist on X (identity when the swing about jME's Y is already
   the narrower), or, when even the narrower swing is wider than the
   engine's `six-dof-safe-middle` and the twist narrower than it, the
-  twist in the middle,
-  the swing about jME's Z on X and the other on Z; and the three limits
-  in the turned frame, none exactly 0, Y's at most 1.5."
+  twist in the middle, the swing about jME's Z on X and the other on Z;
+  and the three limits in the turned frame, none exactly 0, Y's at most
+  1.5."
   [xz xy twist]
   (let [open #(max 1e-4 (double %))
         [t y z] [(double twist) (double xy) (double xz)]
