@@ -11,7 +11,9 @@ floor, the largest amount any hinge went past its range (radians, and as a
 multiple of the 0.05 rad a hinge may go past in cortex's test), which
 hinge, and when.  Twice: at cortex's step (1/60 s, implicitfast, as
 humanoid_compare.py runs it) and with the file's own options (RK4 at
-0.003 s, the step Gymnasium trains at).
+0.003 s, the step Gymnasium trains at); then PyBullet at 1/60 s, the
+humanoid built as humanoid_compare.py builds it (its floor's friction is
+multiplied with the bodies' 1.0).
 
     /work/venvs/compare/bin/python scripts/compare/limit_overshoot.py
 """
@@ -79,6 +81,53 @@ def drop(mujoco, xml, friction, step):
     return worst
 
 
+def drop_pybullet(xml, friction):
+    """The same drop in PyBullet, the humanoid built by humanoid_compare.py
+    (Featherstone multibody, 1/60 s); friction: the floor's (PyBullet
+    multiplies it with the bodies' 1.0)."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from humanoid_compare import PybulletRun
+    run = PybulletRun("humanoid", xml, 0)
+    p, cid, body = run.p, run.cid, run.body
+    low = min(p.getAABB(body, link, physicsClientId=cid)[0][2]
+              for link in range(-1, p.getNumJoints(body, physicsClientId=cid)))
+    pos, orn = p.getBasePositionAndOrientation(body, physicsClientId=cid)
+    p.resetBasePositionAndOrientation(body, [pos[0], pos[1], pos[2] + 1.0 - low], orn, physicsClientId=cid)
+    p.changeDynamics(run.floor, -1, lateralFriction=friction, physicsClientId=cid)
+    # PyBullet's links in the order humanoid_compare.py makes them: for each
+    # MuJoCo body after the root, one link per hinge (or one fixed link);
+    # each hinge's range from MuJoCo's model (the limits were given through
+    # changeDynamics, which getJointInfo does not show)
+    import mujoco
+    m = mujoco.MjModel.from_xml_path(xml)
+    limited, index = [], 0
+    for b in range(2, m.nbody):
+        hinges = [j for j in range(m.body_jntadr[b], m.body_jntadr[b] + m.body_jntnum[b])
+                  if m.jnt_type[j] == mujoco.mjtJoint.mjJNT_HINGE]
+        for j in hinges or [None]:
+            if j is not None and m.jnt_limited[j]:
+                lo, hi = m.jnt_range[j]
+                limited.append((index, mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_JOINT, j), lo, hi))
+            index += 1
+    if index != p.getNumJoints(body, physicsClientId=cid):
+        raise RuntimeError("PyBullet's humanoid has %d links, expected %d"
+                           % (p.getNumJoints(body, physicsClientId=cid), index))
+    def pasts():
+        return {name: max(0.0, lo - p.getJointState(body, j, physicsClientId=cid)[0],
+                          p.getJointState(body, j, physicsClientId=cid)[0] - hi)
+                for j, name, lo, hi in limited}
+    start = pasts()
+    worst = (0.0, None, 0.0)
+    steps = int(round(SECONDS * 60))
+    for i in range(1, steps + 1):
+        run.step(1)
+        for name, past in pasts().items():
+            if past - start[name] > worst[0]:
+                worst = (past - start[name], name, i / 60.0)
+    run.close()
+    return worst
+
+
 def main():
     try:
         import mujoco
@@ -96,6 +145,15 @@ def main():
             past, joint, t = drop(mujoco, xml, friction, step)
             print("%-28s %8.2f %9.4f %9.2f  %-16s %6.2f" % (label, friction, past, past / HINGE_ALLOWANCE,
                                                            joint or "-", t))
+    try:
+        import pybullet  # noqa: F401
+    except ImportError:
+        print("limit_overshoot.py: pybullet is not installed; its rows are left out")
+        return 0
+    for friction in (0.25, 0.5, 1.0):
+        past, joint, t = drop_pybullet(xml, friction)
+        print("%-28s %8.2f %9.4f %9.2f  %-16s %6.2f" % ("PyBullet, 1/60 s", friction, past,
+                                                       past / HINGE_ALLOWANCE, joint or "-", t))
     return 0
 
 
