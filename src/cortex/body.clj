@@ -10,7 +10,8 @@
   `joint-dispatch` (a multimethod: add joint types), `joint-types`,
   `read-joint` (a joint description, read safely), `read-description`
   (any such property), `segments`, `mass`,
-  `pivot`, `pivot-in-world`."
+  `pivot`, `pivot-in-world`, `cone-engine-angles` (a cone's angles as
+  its engine reads them)."
   (:require [clojure.edn :as edn]
             [clojure.string :as str]
             [cortex.engine :as engine]
@@ -777,6 +778,24 @@
           ;; is jME's -Y
           :else [quarter-about-x [t z y]])]
     [turn [(open lx) (min 1.5 (open ly)) (open lz)]]))
+
+(defn cone-engine-angles
+  "[angles limits] of a cone of description `d` (see `joint-records`)
+  whose body B is turned by the Quaternion `rel` relative to body A,
+  both joint frames read as proprioception reads them (identity at
+  rest): the three angles its engine limits, as the engine reads them,
+  and the limits `joint-dispatch` gave them. The angles are the Euler
+  angles in the frame the engine is given (turned by `cone-limits`);
+  Bullet reads a 6-DOF joint's relative frame column by column
+  (jBullet's getMatrixElem(i) is element (i mod 3, i div 3)), so they
+  are those of the inverse rotation, m^-1 = Rx Ry Rz."
+  [d ^Quaternion rel]
+  (let [[^Matrix3f turn limits] (cone-limits (:limit-xz d) (:limit-xy d) (:twist d))
+        m (.mult (.transposeNew turn) (.mult (.toRotationMatrix rel) turn))]
+    [[(Math/atan2 (- (.get m 2 1)) (.get m 2 2))
+      (Math/asin (max -1.0 (min 1.0 (double (.get m 2 0)))))
+      (Math/atan2 (- (.get m 1 0)) (.get m 0 0))]
+     limits]))
 
 (defmethod joint-dispatch :cone
   [constraints control-a control-b pivot-a pivot-b ^Matrix3f rotation]

@@ -7,7 +7,7 @@
             [cortex.sim :as sim]
             [cortex.util :as util])
   (:import (com.jme3.bounding BoundingBox)
-           (com.jme3.math Matrix3f Quaternion)
+           (com.jme3.math Quaternion)
            (com.jme3.scene Geometry Node)))
 
 (def ^:private creatures
@@ -40,16 +40,6 @@
                0.1))
     0.0))
 
-(defn- euler-xyz
-  "The Euler angles [x y z] of the relative rotation `m` as Bullet's
-  6-DOF joints read them: Bullet reads its relative frame column by
-  column (jBullet's getMatrixElem(i) is element (i mod 3, i div 3)), so
-  the angles are those of the inverse rotation, m^-1 = Rx Ry Rz."
-  [^Matrix3f m]
-  [(Math/atan2 (- (.get m 2 1)) (.get m 2 2))
-   (Math/asin (max -1.0 (min 1.0 (double (.get m 2 0)))))
-   (Math/atan2 (- (.get m 1 0)) (.get m 0 0))])
-
 (defn cone-angles
   "[angles limits] of the cone joint `sensor` (cortex.proprioception) of
   description `d` now: its three angles as its engine reads them (the
@@ -57,10 +47,8 @@
   engine, turned when the wider swing is about jME's Y, see the body
   chapter) and the limits body! gave them."
   [sensor d]
-  (let [[^Matrix3f turn limits] (#'body/cone-limits (:limit-xz d) (:limit-xy d) (:twist d))
-        [x y z w] (p/relative-rotation sensor)
-        r (.toRotationMatrix (Quaternion. (float x) (float y) (float z) (float w)))]
-    [(euler-xyz (.mult (.transposeNew turn) (.mult r turn))) limits]))
+  (let [[x y z w] (p/relative-rotation sensor)]
+    (body/cone-engine-angles d (Quaternion. (float x) (float y) (float z) (float w)))))
 
 (defn limit-overshoot
   "How far past its limits the joint `sensor` (cortex.proprioception)

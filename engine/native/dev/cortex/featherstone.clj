@@ -15,7 +15,7 @@
            (com.jme3.bullet.collision.shapes BoxCollisionShape CollisionShape)
            (com.jme3.bullet.control RigidBodyControl)
            (com.jme3.bullet.objects MultiBodyCollider PhysicsRigidBody)
-           (com.jme3.math Matrix3f Quaternion Transform Vector3f)
+           (com.jme3.math Quaternion Transform Vector3f)
            (com.jme3.scene Geometry Node)
            (java.lang.management ManagementFactory)))
 
@@ -217,16 +217,6 @@
               :when (not (zero? past))]
         (.addJointTorque link 0 (float (- (- (* k past)) (* c (.jointVelocity link 0)))))))))
 
-(defn- euler-xyz
-  "The Euler angles [x y z] of the relative rotation `m` as Bullet's
-  6-DOF joints read them: Bullet reads its relative frame column by
-  column (jBullet's getMatrixElem(i) is element (i mod 3, i div 3)), so
-  the angles are those of the inverse rotation, m^-1 = Rx Ry Rz."
-  [^Matrix3f m]
-  [(Math/atan2 (- (.get m 2 1)) (.get m 2 2))
-   (Math/asin (max -1.0 (min 1.0 (double (.get m 2 0)))))
-   (Math/atan2 (- (.get m 1 0)) (.get m 0 0))])
-
 (defn- joint-gauges
   "For each joint of `order`, a function of the parts' world transforms
   (see `frames`) giving [type radians-past-its-limits gap-in-metres],
@@ -265,10 +255,7 @@
                                              (< angle (- Math/PI)) (+ angle (* 2 Math/PI))
                                              :else angle)]
                              (max 0.0 (- (double lo) angle) (- angle (double hi))))
-                    :cone (let [[^Matrix3f turn limits] (#'body/cone-limits (:limit-xz d) (:limit-xy d)
-                                                                           (:twist d))
-                                angles (euler-xyz (.mult (.transposeNew turn)
-                                                         (.mult (.toRotationMatrix rel) turn)))]
+                    :cone (let [[angles limits] (body/cone-engine-angles d rel)]
                             (reduce max 0.0 (map (fn [a l] (- (Math/abs (double a)) (double l)))
                                                  angles limits)))
                     0.0)]
