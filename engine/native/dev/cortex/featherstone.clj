@@ -9,9 +9,9 @@
   cortex.featherstone)."
   (:require [clojure.string :as str]
             [cortex.body :as body]
+            [cortex.physics-trust-test :as pt]
             [cortex.util :as util])
-  (:import (com.jme3.bounding BoundingBox)
-           (com.jme3.bullet MultiBody MultiBodyLink MultiBodySpace PhysicsSpace$BroadphaseType)
+  (:import (com.jme3.bullet MultiBody MultiBodyLink MultiBodySpace PhysicsSpace$BroadphaseType)
            (com.jme3.bullet.collision.shapes BoxCollisionShape CollisionShape)
            (com.jme3.bullet.control RigidBodyControl)
            (com.jme3.bullet.objects MultiBodyCollider PhysicsRigidBody)
@@ -23,21 +23,12 @@
 
 (def ^:private dt (/ 1.0 60.0))
 
-(defn- extent
-  "[lowest highest] point of `creature`'s segments (world bounds)."
-  [^Node creature]
-  (.updateGeometricState creature)
-  (let [bs (for [^Geometry g (body/segments creature)
-                 :let [^BoundingBox b (.getWorldBound g)]]
-             [(- (.y (.getCenter b)) (.getYExtent b)) (+ (.y (.getCenter b)) (.getYExtent b))])]
-    [(double (apply min (map first bs))) (double (apply max (map second bs)))]))
-
 (defn- lifted
   "`creature` (a Node, not yet built) moved up so that its lowest point
   is 1 m above the floor at 0, then given its body (sleeping off, as
   cortex.compare builds it): [creature height]."
   [^Node creature]
-  (let [[lo hi] (extent creature)]
+  (let [[lo hi] (pt/extent creature)]
     (.move creature 0 (float (- 1.0 lo)) 0)
     [(body/body! creature {:sleeping-thresholds [0 0]}) (- hi lo)]))
 
