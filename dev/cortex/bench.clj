@@ -10,6 +10,7 @@
             [cortex.bench.creatures :as creatures]
             [cortex.blender-bench :as blender-bench]
             [cortex.body :as body]
+            [cortex.projection]
             [cortex.sim :as sim]
             [cortex.util :as util]
             [cortex.world :as world])
@@ -209,11 +210,12 @@
 (defn bare-space
   "A Bullet space made as BulletAppState makes one: world bounds of
   +-10000 and the DBVT broadphase, set up as cortex's worlds are
-  (`cortex.engine/configure-space!`)."
+  (`cortex.engine/configure-space!`, `cortex.projection/install!`)."
   ^PhysicsSpace []
-  (cortex.engine/configure-space!
-   (PhysicsSpace. (Vector3f. -10000 -10000 -10000) (Vector3f. 10000 10000 10000)
-                  PhysicsSpace$BroadphaseType/DBVT)))
+  (cortex.projection/install!
+   (cortex.engine/configure-space!
+    (PhysicsSpace. (Vector3f. -10000 -10000 -10000) (Vector3f. 10000 10000 10000)
+                   PhysicsSpace$BroadphaseType/DBVT))))
 
 (defn- step-bare!
   "Put the bodies under `root` into a new bare space, under earth's

@@ -16,6 +16,7 @@
             [clojure.string :as str]
             [cortex.engine :as engine]
             [cortex.mass :as mass]
+            [cortex.projection :as projection]
             [cortex.sense :as sense]
             [cortex.util :as util])
   (:import (com.jme3.bounding BoundingBox)
@@ -645,15 +646,19 @@
   (let [q (doto (Quaternion.) (.fromRotationMatrix m))]
     [(double (.getX q)) (double (.getY q)) (double (.getZ q)) (double (.getW q))]))
 
-(defn- limit-rows!
-  "Give the joint `joint` between `control-a` and `control-b`, whose
-  empty is turned by `rotation`, the engine's rows that hold its limits
-  as proprioception reads them (see cortex.engine/limit-rows!); `spec`
-  the limits, as the joint's description gives them."
-  [joint control-a control-b ^Matrix3f rotation spec]
-  (engine/limit-rows! joint (assoc spec
-                                   :frame-a (frame-quaternion (body-frame control-a rotation))
-                                   :frame-b (frame-quaternion (body-frame control-b rotation)))))
+(defn- hold-limits!
+  "Hold the limits of `joint` between `control-a` and `control-b`,
+  whose empty is turned by `rotation`, beyond what the engine's own
+  joint does: the engine's rows that hold them as proprioception reads
+  them (`rows`, see cortex.engine/limit-rows!) and the projection that
+  puts the joint back when the solver has let it too far past (`held`,
+  see cortex.projection/hold!). Both are given the joint's frame in
+  each body. Returns `joint`."
+  [joint control-a control-b ^Matrix3f rotation rows held]
+  (let [frames {:frame-a (frame-quaternion (body-frame control-a rotation))
+                :frame-b (frame-quaternion (body-frame control-b rotation))}]
+    (engine/limit-rows! joint (merge rows frames))
+    (projection/hold! joint (merge held frames))))
 
 (defn- number-field
   [constraints k]
@@ -748,9 +753,12 @@
                      (.mult (body-frame control-b rotation) axis))
         (engine/zero-hinge!)
         (engine/limit-hinge! low high)
-        (limit-rows! control-a control-b rotation
-                     {:axis [(.x ^Vector3f axis) (.y ^Vector3f axis) (.z ^Vector3f axis)]
-                      :limit (mapv double limit)}))))
+        (hold-limits! control-a control-b rotation
+                      {:axis [(.x ^Vector3f axis) (.y ^Vector3f axis) (.z ^Vector3f axis)]
+                       :limit (mapv double limit)}
+                      {:type :hinge
+                       :axis [(.x ^Vector3f axis) (.y ^Vector3f axis) (.z ^Vector3f axis)]
+                       :limit (mapv double limit)}))))
 
 (defn- cone-limits
   "[frame-turn [x-limit y-limit z-limit]] for a cone of swing limits
@@ -788,14 +796,11 @@
   angles in the frame the engine is given (turned by `cone-limits`);
   Bullet reads a 6-DOF joint's relative frame column by column
   (jBullet's getMatrixElem(i) is element (i mod 3, i div 3)), so they
-  are those of the inverse rotation, m^-1 = Rx Ry Rz."
+  are those of the inverse rotation, m^-1 = Rx Ry Rz (see
+  cortex.projection/euler-angles)."
   [d ^Quaternion rel]
-  (let [[^Matrix3f turn limits] (cone-limits (:limit-xz d) (:limit-xy d) (:twist d))
-        m (.mult (.transposeNew turn) (.mult (.toRotationMatrix rel) turn))]
-    [[(Math/atan2 (- (.get m 2 1)) (.get m 2 2))
-      (Math/asin (max -1.0 (min 1.0 (double (.get m 2 0)))))
-      (Math/atan2 (- (.get m 1 0)) (.get m 0 0))]
-     limits]))
+  (let [[^Matrix3f turn limits] (cone-limits (:limit-xz d) (:limit-xy d) (:twist d))]
+    [(projection/euler-angles rel (doto (Quaternion.) (.fromRotationMatrix turn))) limits]))
 
 (defmethod joint-dispatch :cone
   [constraints control-a control-b pivot-a pivot-b ^Matrix3f rotation]
@@ -810,8 +815,10 @@
           frame (.mult rotation turn)]
       (-> (engine/six-dof-joint control-a control-b pivot-a pivot-b
                                 (body-frame control-a frame) (body-frame control-b frame) [t y z])
-          (limit-rows! control-a control-b rotation
-                       {:twist (double twist) :limit-xz (double xz) :limit-xy (double xy)})))))
+          (hold-limits! control-a control-b rotation
+                        {:twist (double twist) :limit-xz (double xz) :limit-xy (double xy)}
+                        {:type :cone :turn (doto (Quaternion.) (.fromRotationMatrix turn))
+                         :limits [t y z]})))))
 
 (defmethod joint-dispatch :spring
   [constraints control-a control-b pivot-a pivot-b ^Matrix3f rotation]
@@ -877,11 +884,13 @@
             control-a (.getControl obj-a RigidBodyControl)
             control-b (.getControl obj-b RigidBodyControl)
             center (.getWorldTranslation joint)]
-        (doto ^com.jme3.bullet.joints.PhysicsJoint
-            (joint-dispatch constraints control-a control-b
-                            (pivot control-a center) (pivot control-b center)
-                            (.toRotationMatrix (.getWorldRotation joint)))
-          (engine/collide-linked! false)))
+        (let [j (joint-dispatch constraints control-a control-b
+                                (pivot control-a center) (pivot control-b center)
+                                (.toRotationMatrix (.getWorldRotation joint)))]
+          (engine/collide-linked! j false)
+          ;; every joint counts for projection's tree, limited or not
+          (when-not (projection/held? j) (projection/hold! j nil))
+          j))
       (catch clojure.lang.ExceptionInfo e
         (throw (ex-info (str label ": " (ex-message e))
                         (assoc (ex-data e) :joint (.getName joint)) e))))))

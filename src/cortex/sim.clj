@@ -15,6 +15,7 @@
             [cortex.engine :as engine]
             [cortex.muscle :as muscle]
             [cortex.physics-tab :as physics-tab]
+            [cortex.projection :as projection]
             [cortex.proprioception :as p]
             [cortex.touch :as touch]
             [cortex.util :as util]
@@ -42,11 +43,14 @@
 
 (defn physics-space
   "A PhysicsSpace made as BulletAppState makes one: world bounds of
-  +-10000, the DBVT broadphase."
+  +-10000, the DBVT broadphase; set up as cortex's worlds are
+  (cortex.engine/configure-space!), its joints projected
+  (cortex.projection/install!)."
   ^PhysicsSpace []
-  (engine/configure-space!
-   (PhysicsSpace. (Vector3f. -10000 -10000 -10000) (Vector3f. 10000 10000 10000)
-                  PhysicsSpace$BroadphaseType/DBVT)))
+  (projection/install!
+   (engine/configure-space!
+    (PhysicsSpace. (Vector3f. -10000 -10000 -10000) (Vector3f. 10000 10000 10000)
+                   PhysicsSpace$BroadphaseType/DBVT))))
 
 (defn floor
   "A static grey box named \"floor\", 400 by 400 units (room for a
@@ -88,9 +92,10 @@
 
 (def solver-keys
   "What a simulation's :solver may set: :iterations (the constraint
-  solver's passes per Bullet step) and :substeps (Bullet steps per
-  1/60 s step)."
-  #{:iterations :substeps})
+  solver's passes per Bullet step), :substeps (Bullet steps per 1/60 s
+  step) and :projection (whether joints are put back within their
+  limits after each Bullet step, see cortex.projection)."
+  #{:iterations :substeps :projection})
 
 (def solver-bounds
   "The largest :iterations and :substeps a :solver may ask for."
@@ -108,8 +113,8 @@
 
 (defn check-solver!
   "Check a simulation's :solver option `solver` (nil, or a map of
-  `solver-keys` to whole numbers from 1 to `solver-bounds`); an ex-info
-  naming the key at fault otherwise."
+  `solver-keys` to whole numbers from 1 to `solver-bounds`, :projection
+  to true or false); an ex-info naming the key at fault otherwise."
   [solver]
   (when (some? solver)
     (when-not (map? solver)
@@ -118,7 +123,11 @@
                       {:solver solver})))
     (doseq [k (keys solver) :when (not (solver-keys k))]
       (throw (unknown-key-error ":solver" k solver-keys {:solver solver})))
-    (doseq [[k v] solver
+    (when-not (boolean? (:projection solver true))
+      (throw (ex-info (str ":solver :projection must be true or false, not "
+                           (pr-str (:projection solver)))
+                      {:solver solver :key :projection :value (:projection solver)})))
+    (doseq [[k v] (dissoc solver :projection)
             :let [hi (solver-bounds k)]
             :when (not (and (int? v) (<= 1 (long v) (long hi))))]
       (throw (ex-info (str ":solver " k " must be a whole number from 1 to " hi ", not " (pr-str v))
@@ -165,15 +174,19 @@
     (.setSolverNumIterations space (int n)))
   (when-let [k (:substeps solver)]
     (.setAccuracy space (float (physics-tab/substep-length time-scale k)))
-    (.setMaxSubSteps space (int k))))
+    (.setMaxSubSteps space (int k)))
+  (when (contains? solver :projection)
+    (projection/enable! space (:projection solver))))
 
 (defn- solver-of
-  "How a simulation steps, {:iterations n :substeps k}: what `solver`
-  asked for, else the creature's Physics tab, else Bullet's defaults
-  (10 and 1)."
+  "How a simulation steps, {:iterations n :substeps k :projection bool}:
+  what `solver` asked for, else the creature's Physics tab, else
+  cortex's defaults (20, see cortex.engine/solver-iterations, 1, and
+  cortex.engine/projects-joints?)."
   [^PhysicsSpace space solver ^Node creature]
   {:iterations (.getSolverNumIterations space)
-   :substeps (long (or (:substeps solver) (:substeps (tab-settings creature)) 1))})
+   :substeps (long (or (:substeps solver) (:substeps (tab-settings creature)) 1))
+   :projection (projection/enabled? space)})
 
 (defn simulation
   "A simulation of `creature` (a creature Node; given its body with
@@ -184,9 +197,9 @@
   :time; all by default), :eyes (true, or a map of eye name to options:
   what the creature's eyes see is observed too, drawn offscreen on a
   GL context of the simulation's own; see cortex.sight and the vision
-  chapter), :solver ({:iterations n :substeps k}, either or both:
-  overrides Bullet's defaults of 10 and 1, or a Physics-tab creature's
-  file; see `check-solver!`). Any other key is an error. Use it from
+  chapter), :solver ({:iterations n :substeps k :projection bool}, any
+  of them: overrides cortex's defaults of 20, 1 and (on jBullet) true, or a
+  Physics-tab creature's file; see `check-solver!`). Any other key is an error. Use it from
   one thread at a time; `destroy!` frees it."
   ([creature] (simulation creature {}))
   ([^Node creature opts]
@@ -230,8 +243,9 @@
                ((requiring-resolve 'cortex.sight/open!) creature root eyes))})))
 
 (defn solver
-  "How `sim` steps: {:iterations n :substeps k}, the constraint solver's
-  passes per Bullet step and Bullet steps per 1/60 s step."
+  "How `sim` steps: {:iterations n :substeps k :projection bool}, the
+  constraint solver's passes per Bullet step, Bullet steps per 1/60 s
+  step, and whether joints are put back within their limits."
   [sim]
   (:solver sim))
 

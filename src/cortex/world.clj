@@ -11,6 +11,7 @@
   `physics-space`."
   (:require [clojure.string :as str]
             [cortex.engine :as engine]
+            [cortex.projection :as projection]
             [cortex.util :as util])
   (:import (com.jme3.app FlyCamAppState LegacyApplication SimpleApplication)
            (com.jme3.app.state AbstractAppState AppState)
@@ -217,7 +218,7 @@
                                   (.setThreadingType BulletAppState$ThreadingType/SEQUENTIAL))]
               (.attach (.getStateManager this) physics-state)
               ;; the engine's settings that cortex makes the same (org/engine.org)
-              (some-> (.getPhysicsSpace physics-state) engine/configure-space!)
+              (some-> (.getPhysicsSpace physics-state) engine/configure-space! projection/install!)
               (swap! state assoc ::physics physics-state)
               (.attachChild (.getRootNode this) root-node)
               (engine/add-all! (.getPhysicsSpace physics-state) (.getRootNode this))

@@ -132,7 +132,9 @@
                           [{:solver 20} #":solver must be a map"]
                           [{:solver {:iterations 0}} #":solver :iterations must be a whole number from 1 to 1000, not 0"]
                           [{:solver {:substeps 2.5}} #":solver :substeps must be a whole number from 1 to 64"]
-                          [{:solver {:substep 2}} #":solver has no key :substep; did you mean :substeps\?"]]]
+                          [{:solver {:substep 2}} #":solver has no key :substep; did you mean :substeps\?"]
+                          [{:solver {:projection "no"}} #":solver :projection must be true or false"]
+                          [{:solver {:projecton false}} #"did you mean :projection\?"]]]
     (is (thrown-with-msg? clojure.lang.ExceptionInfo pattern
                           (sim/simulation (util/load-blender-model f/worm-path) opts)))))
 
@@ -154,9 +156,9 @@
       [(- v0 (double (vy))) @ticks (sim/solver s)])))
 
 (deftest the-solver-can-be-chosen
-  (doseq [[opts solver] [[{} {:iterations 10 :substeps 1}]
-                         [{:solver {:iterations 25}} {:iterations 25 :substeps 1}]
-                         [{:solver {:substeps 8}} {:iterations 10 :substeps 8}]]
+  (doseq [[opts solver] [[{} {:iterations 20 :substeps 1 :projection engine/projects-joints?}]
+                         [{:solver {:iterations 25}} {:iterations 25 :substeps 1 :projection engine/projects-joints?}]
+                         [{:solver {:substeps 8 :projection false}} {:iterations 20 :substeps 8 :projection false}]]
           :let [[gained ticks seen] (speed-gained-in-a-second opts)
                 k (:substeps solver)]]
     (testing (pr-str opts)
@@ -169,8 +171,9 @@
                  ((requiring-resolve 'cortex.physics-tab/load-creature) "test/fixtures/physics-sim/substeps.blend"))
           file (sim/simulation (make) {})
           ours (sim/simulation (make) {:solver {:iterations 12 :substeps 4}})]
-      (is (= {:iterations 4 :substeps 2} (sim/solver file)))
-      (is (= {:iterations 12 :substeps 4} (sim/solver ours)))
+      ;; its joints are Blender's, not the body chapter's: none is projected
+      (is (= {:iterations 4 :substeps 2 :projection engine/projects-joints?} (sim/solver file)))
+      (is (= {:iterations 12 :substeps 4 :projection engine/projects-joints?} (sim/solver ours)))
       (testing "at the file's time scale of 0.5: four substeps of 0.5/240 s"
         (is (< (Math/abs (- (* 4 (.getAccuracy ^com.jme3.bullet.PhysicsSpace (:space ours))) (/ 0.5 60)))
                1e-6))))))

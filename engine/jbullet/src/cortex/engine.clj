@@ -455,10 +455,22 @@
           (.addConstraint world l true)
           (.put placed l j))))))
 
+(def solver-iterations
+  "The constraint solver's passes per Bullet step that cortex's spaces
+  take: 20, twice Bullet's default (see the physics-trust chapter)."
+  20)
+
+(def projects-joints?
+  "Whether cortex's spaces put joints back within their limits after
+  each step by default (cortex.projection): yes on jBullet."
+  true)
+
 (defn configure-space!
-  "Set `space` up as cortex simulates: jBullet's defaults, and the limit
-  rows of its joints (see `limit-rows!`) added before each step."
+  "Set `space` up as cortex simulates: jBullet's defaults but for
+  `solver-iterations`, and the limit rows of its joints (see
+  `limit-rows!`) added before each step."
   ^PhysicsSpace [^PhysicsSpace space]
+  (.setSolverNumIterations space (int solver-iterations))
   (let [seen (java.util.IdentityHashMap.)
         placed (java.util.IdentityHashMap.)]
     (.addTickListener space (reify com.jme3.bullet.PhysicsTickListener

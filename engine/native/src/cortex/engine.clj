@@ -487,11 +487,25 @@
   [joint _spec]
   joint)
 
+(def solver-iterations
+  "The constraint solver's passes per Bullet step that cortex's spaces
+  take: 20, twice Bullet's default (see the physics-trust chapter)."
+  20)
+
+(def projects-joints?
+  "Whether cortex's spaces put joints back within their limits after
+  each step by default (cortex.projection): not on native Bullet, whose
+  six-DOF joints, put back, throw the humanoid's shoulders further past
+  (measured in the physics-trust chapter)."
+  false)
+
 (defn configure-space!
-  "Set `space` up as cortex simulates: split impulse off, as in jBullet;
-  hinges limited speculatively; Blender's collision collections decide
-  which of its bodies collide (see `set-collections!`)."
+  "Set `space` up as cortex simulates: `solver-iterations`; split
+  impulse off, as in jBullet; hinges limited speculatively; Blender's
+  collision collections decide which of its bodies collide (see
+  `set-collections!`)."
   ^PhysicsSpace [^PhysicsSpace space]
+  (.setSolverNumIterations space (int solver-iterations))
   (doto ^SolverInfo (.getSolverInfo space)
     (.setSplitImpulseEnabled false)
     ;; jBullet's solver mode: constraints in a (seeded) random order,
