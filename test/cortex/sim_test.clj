@@ -156,9 +156,12 @@
       [(- v0 (double (vy))) @ticks (sim/solver s)])))
 
 (deftest the-solver-can-be-chosen
-  (doseq [[opts solver] [[{} {:iterations 20 :substeps 1 :projection engine/projects-joints?}]
-                         [{:solver {:iterations 25}} {:iterations 25 :substeps 1 :projection engine/projects-joints?}]
-                         [{:solver {:substeps 8 :projection false}} {:iterations 20 :substeps 8 :projection false}]]
+  (doseq [[opts solver] [[{} {:iterations engine/solver-iterations :substeps 1
+                              :projection engine/projects-joints?}]
+                         [{:solver {:iterations 25}} {:iterations 25 :substeps 1
+                                                      :projection engine/projects-joints?}]
+                         [{:solver {:substeps 8 :projection false}}
+                          {:iterations engine/solver-iterations :substeps 8 :projection false}]]
           :let [[gained ticks seen] (speed-gained-in-a-second opts)
                 k (:substeps solver)]]
     (testing (pr-str opts)
