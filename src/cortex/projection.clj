@@ -199,11 +199,19 @@
         (turn-about! subtree (.normalizeLocal (if far-b? d (.inverse d))) centre)
         true))))
 
+(defn- awake?
+  "Whether either body of the joint of plan entry `entry` is awake: a
+  joint between two sleeping bodies has not moved since it was last
+  looked at."
+  [{:keys [^PhysicsJoint joint]}]
+  (or (.isActive ^PhysicsRigidBody (.getBodyA joint)) (.isActive ^PhysicsRigidBody (.getBodyB joint))))
+
 (defn project!
   "Put back every joint of `plan` (see `plan`) that is past its
-  trigger, from the root outwards. Returns how many were."
+  trigger, from the root outwards, but those whose bodies both sleep.
+  Returns how many were put back."
   [plan]
-  (reduce (fn [^long n entry] (if (project-joint! entry) (inc n) n)) 0 plan))
+  (reduce (fn [^long n entry] (if (and (awake? entry) (project-joint! entry)) (inc n) n)) 0 plan))
 
 (def ^:private ^Map spaces
   "Each space `install!` was given (weakly held) -> a volatile
