@@ -85,7 +85,7 @@
   "Each joint `hold!` was given (weakly held) -> {:seq n :spec spec}."
   (Collections/synchronizedMap (WeakHashMap.)))
 
-(def ^:private ^AtomicLong sequence (AtomicLong.))
+(def ^:private ^AtomicLong joint-count (AtomicLong.))
 
 (defn- quaternion ^Quaternion [q]
   (if (instance? Quaternion q)
@@ -101,7 +101,7 @@
   (a Quaternion) and the :limits [x y z] of its three angles. Returns
   `joint`."
   [joint spec]
-  (.put held joint {:seq (.incrementAndGet sequence)
+  (.put held joint {:seq (.incrementAndGet joint-count)
                     :spec (when spec
                             (cond-> (assoc spec
                                            :frame-a (quaternion (:frame-a spec))

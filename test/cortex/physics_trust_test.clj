@@ -65,6 +65,24 @@
                0.1))
     0.0))
 
+(defn energy
+  "The mechanical energy of `sim`'s segments now, joules: each body's
+  kinetic energy, of its centre of mass and of its turning about it
+  (its principal moments), and its height above y = 0 under g = 9.81."
+  ^double [sim]
+  (reduce + (for [[_ rb] (:segments sim)
+                  :let [inv-m (engine/inverse-mass rb)]
+                  :when (pos? inv-m)]
+              (let [m (/ 1.0 inv-m)
+                    v (engine/linear-velocity rb)
+                    [_ y] (engine/position rb)
+                    ;; the angular velocity in the body's principal axes
+                    w (p/rotate (p/q-conj (engine/orientation rb)) (engine/angular-velocity rb))]
+                (+ (* 0.5 m (reduce + (map * v v)))
+                   (* 0.5 (reduce + (map (fn [wi ii] (if (pos? ii) (/ (* wi wi) ii) 0.0))
+                                         w (engine/inverse-inertia rb))))
+                   (* m 9.81 y))))))
+
 (defn drop!
   "Drop `creature` (a Node, not yet built) with its lowest point 1 m
   above a floor of `friction` for 10 s, simulated with `opts` besides
@@ -88,8 +106,10 @@
         start-past (past)
         speed (fn [obs] (apply max (for [[_ {:keys [velocity]}] (:segments obs)]
                                      (Math/sqrt (reduce + (map #(* % %) velocity))))))
-        [obs pasts] (reduce (fn [[obs pasts] _] [(conj obs (sim/step! s)) (conj pasts (past))])
-                            [[] []] (range 600))
+        e0 (energy s)
+        [obs pasts es] (reduce (fn [[obs pasts es] _]
+                                 [(conj obs (sim/step! s)) (conj pasts (past)) (conj es (energy s))])
+                               [[] [] []] (range 600))
         still-from (loop [i 599] (if (and (>= i 0) (< (speed (obs i)) 0.05)) (recur (dec i)) (inc i)))
         moved (apply max (for [[n {p1 :position}] (:segments (obs 599))
                                :let [p0 (get-in obs [479 :segments n :position])]]
@@ -97,7 +117,10 @@
         worst (fn [k] (apply max 0.0 (for [ps pasts [n p] ps] (- (p k) ((start-past n) k)))))]
     {:fastest (apply max (map speed obs)) :limit limit
      :worst-past (worst 0) :worst-past-proprioception (worst 1)
-     :still-at (when (< still-from 600) (/ still-from 60.0)) :moved moved})))
+     :still-at (when (< still-from 600) (/ still-from 60.0)) :moved moved
+     ;; the most energy the creature ever had beyond what it started
+     ;; with, as a fraction of that
+     :energy-gain (/ (- (apply max es) e0) e0)})))
 
 (defn- chain-100 []
   ((requiring-resolve 'cortex.bench.creatures/creature)
@@ -120,11 +143,14 @@
   (doseq [friction [0.25 0.5 1.0]
           [name make] (concat (for [[n f] creatures] [n #(util/load-blender-model f)])
                               [["chain-100" chain-100]])
-          :let [{:keys [fastest limit worst-past still-at moved]} (drop! (make) friction)
+          :let [{:keys [fastest limit worst-past still-at moved energy-gain]} (drop! (make) friction)
                 what (str name " on friction " friction)]]
     (testing what
       (when (falls-clean? name)
         (is (< fastest limit) (format "fastest %.2f m/s, a clean fall tops out at %.2f" fastest limit)))
+      ;; for every creature, the four-legged one too: nothing has more
+      ;; energy than it started with
+      (is (< energy-gain 0.001) (format "%.4f more energy than at the start" energy-gain))
       (is (< worst-past allowed-past)
           (format "a joint went %.2f times its allowance past its limit" worst-past))
       (is (some? still-at) "never came to rest")
