@@ -90,8 +90,7 @@
     {:engine (str "cortex (" ({:jbullet "jBullet" :native "native Bullet"} cortex.engine/name) ")")
      :image (picture! (nth (peek h) 3) (str "out/compare/cortex-humanoid-" (name cortex.engine/name) ".png"))
      :chain_image (picture! (nth (peek c) 3) (str "out/compare/cortex-chain-" (name cortex.engine/name) ".png"))
-     :settings (str cortex.engine/solver-iterations " solver iterations, projection "
-                    (if cortex.engine/projects-joints? "on" "off")
+     :settings (str cortex.engine/solver-iterations " solver iterations, projection"
                     ", cones as 6-DOF, mesh mass properties, sleeping off")
      :humanoid {:steps_per_s (median (map first h))
                 :final_torso_height (height (second (peek h)) "torso" floor-z)

@@ -180,8 +180,10 @@
   [bodies ^Quaternion d ^Vector3f centre]
   (doseq [^PhysicsRigidBody b bodies]
     (let [p (.getPhysicsLocation b (Vector3f.))]
-      (.setPhysicsLocation b (.addLocal (.mult d (.subtractLocal p centre)) centre))
-      (.setPhysicsRotation b (.normalizeLocal (.mult d (rotation b)))))))
+      ;; the turn first: Minie's setPhysicsLocation turns a moving body
+      ;; back to where it was at the start of the step (measured)
+      (.setPhysicsRotation b (.normalizeLocal (.mult d (rotation b))))
+      (.setPhysicsLocation b (.addLocal (.mult d (.subtractLocal p centre)) centre)))))
 
 (defn- project-joint!
   "Put the joint of plan entry `entry` back, if it is past its trigger;
@@ -234,11 +236,9 @@
 
 (defn install!
   "Make `space` put its registered joints back after each of its
-  steps, when the engine does so by default
-  (cortex.engine/projects-joints?: jBullet does, native Bullet not);
-  `enable!` decides otherwise. Returns `space`."
+  steps (`enable!` turns it off and on). Returns `space`."
   ^PhysicsSpace [^PhysicsSpace space]
-  (let [state (volatile! {:enabled? engine/projects-joints?})]
+  (let [state (volatile! {:enabled? true})]
     (.put spaces space state)
     (.addTickListener space (reify PhysicsTickListener
                               (prePhysicsTick [_ _ _])

@@ -181,8 +181,7 @@
 (defn- solver-of
   "How a simulation steps, {:iterations n :substeps k :projection bool}:
   what `solver` asked for, else the creature's Physics tab, else
-  cortex's defaults (cortex.engine/solver-iterations, 1, and
-  cortex.engine/projects-joints?)."
+  cortex's defaults (cortex.engine/solver-iterations, 1, and true)."
   [^PhysicsSpace space solver ^Node creature]
   {:iterations (.getSolverNumIterations space)
    :substeps (long (or (:substeps solver) (:substeps (tab-settings creature)) 1))
@@ -198,8 +197,7 @@
   what the creature's eyes see is observed too, drawn offscreen on a
   GL context of the simulation's own; see cortex.sight and the vision
   chapter), :solver ({:iterations n :substeps k :projection bool}, any
-  of them: overrides cortex's defaults (on jBullet 20, 1 and true; on
-  native Bullet 10, 1 and false), or a
+  of them: overrides cortex's defaults of 20, 1 and true, or a
   Physics-tab creature's file; see `check-solver!`). Any other key is an error. Use it from
   one thread at a time; `destroy!` frees it."
   ([creature] (simulation creature {}))

@@ -132,12 +132,6 @@
   [creature]
   (not= "quadruped" creature))
 
-(def allowed-past
-  "How far past its limits, in allowances, a joint may go in these
-  drops: within the allowance where joints are projected by default
-  (jBullet), twelve times it where they are not (native Bullet; see the
-  text)."
-  (if engine/projects-joints? 1.0 12.0))
 
 (deftest creatures-fall-clean-and-come-to-rest
   (doseq [friction [0.25 0.5 1.0]
@@ -151,18 +145,17 @@
       ;; for every creature, the four-legged one too: nothing has more
       ;; energy than it started with
       (is (< energy-gain 0.001) (format "%.4f more energy than at the start" energy-gain))
-      (is (< worst-past allowed-past)
+      (is (< worst-past 1.0)
           (format "a joint went %.2f times its allowance past its limit" worst-past))
       (is (some? still-at) "never came to rest")
       (is (< moved 0.02) (format "moved %.4f between 8 s and 10 s" moved)))))
 
 (deftest without-projection-the-humanoids-pass-their-limits
   ;; what the default buys: the same drops, projection turned off
-  (when engine/projects-joints?
-    (doseq [name ["humanoid" "heavy-hands"]
-            :let [{:keys [worst-past]} (drop! (util/load-blender-model (creatures name)) 0.5
-                                              {:solver {:projection false}})]]
-      (is (> worst-past 2.0) (format "%s: %.2f times its allowance past" name worst-past)))))
+  (doseq [name ["humanoid" "heavy-hands"]
+          :let [{:keys [worst-past]} (drop! (util/load-blender-model (creatures name)) 0.5
+                                            {:solver {:projection false}})]]
+    (is (> worst-past 2.0) (format "%s: %.2f times its allowance past" name worst-past))))
 
 (defn- swing-into-limit
   "The largest angle a beam hinged to a fixed post (limits +-0.3 rad)

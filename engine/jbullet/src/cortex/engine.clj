@@ -460,11 +460,6 @@
   take: 20, twice Bullet's default (see the physics-trust chapter)."
   20)
 
-(def projects-joints?
-  "Whether cortex's spaces put joints back within their limits after
-  each step by default (cortex.projection): yes on jBullet."
-  true)
-
 (defn configure-space!
   "Set `space` up as cortex simulates: jBullet's defaults but for
   `solver-iterations`, and the limit rows of its joints (see

@@ -489,18 +489,8 @@
 
 (def solver-iterations
   "The constraint solver's passes per Bullet step that cortex's spaces
-  take: Bullet's 10 on native Bullet, where 20 (jBullet's default in
-  cortex) took the heavy-handed humanoid's drops further past their
-  limits and left the four-legged creature of the step loop's example
-  unable to stand on its muscles (see the physics-trust chapter)."
-  10)
-
-(def projects-joints?
-  "Whether cortex's spaces put joints back within their limits after
-  each step by default (cortex.projection): not on native Bullet, whose
-  six-DOF joints, put back, throw the humanoid's shoulders further past
-  (measured in the physics-trust chapter)."
-  false)
+  take: 20, twice Bullet's default (see the physics-trust chapter)."
+  20)
 
 (defn configure-space!
   "Set `space` up as cortex simulates: `solver-iterations`; split
