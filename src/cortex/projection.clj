@@ -61,22 +61,29 @@
 
 (defn- clamp ^double [^double x ^double lo ^double hi] (max lo (min hi x)))
 
+(defn- past?
+  "Whether any of `angles` is further than `margin` past its limit of
+  `limits` (each angle within [-limit limit])."
+  [angles limits ^double margin]
+  (loop [i 0]
+    (and (< i 3)
+         (or (> (Math/abs (double (nth angles i))) (+ (double (nth limits i)) margin))
+             (recur (inc i))))))
+
 (defn corrected
   "The relative rotation a joint of limits `spec` (see `hold!`) should
   have in place of `q`, or nil when `q` is within the trigger of its
   limits."
   [{:keys [type axis limit turn limits]} ^Quaternion q]
-  (let [[trigger keep] (slack type)
-        trigger (double trigger) keep (double keep)]
+  (let [s (slack type)
+        trigger (double (nth s 0)) keep (double (nth s 1))]
     (case type
-      :hinge (let [[lo hi] limit
-                   lo (double lo) hi (double hi)
+      :hinge (let [lo (double (nth limit 0)) hi (double (nth limit 1))
                    a (hinge-angle q axis)]
                (when (or (< a (- lo trigger)) (> a (+ hi trigger)))
                  (.mult (about (- (clamp a (- lo keep) (+ hi keep)) a) axis) q)))
       :cone (let [angles (euler-angles q turn)]
-              (when (some (fn [[a l]] (> (Math/abs (double a)) (+ (double l) trigger)))
-                          (map vector angles limits))
+              (when (past? angles limits trigger)
                 (from-euler (mapv (fn [a l] (let [l (+ (double l) keep)] (clamp a (- l) l)))
                                   angles limits)
                             turn))))))
