@@ -953,6 +953,25 @@
                     " joins them: Bullet will push them apart on the first step;"
                     " move them apart or join them")})))
 
+(defn limit-warnings
+  "Warnings for the hinges of `made` (joint records) built outside their
+  limits by more than projection lets be (cortex.projection/slack): a
+  hinge reads 0 as built, so one whose limits leave out 0 is turned
+  into them at the first step, whatever the designer drew."
+  [made]
+  (let [trigger (double (first (projection/slack :hinge)))]
+    (for [{:keys [name description]} made
+          :when (= :hinge (:type description))
+          :let [[lo hi] (:limit description)
+                off (max (- (double lo) trigger) (- (- (double hi)) trigger) 0.0)]
+          :when (pos? off)]
+      {:kind :built-outside-limits :joint name :warning? true
+       :message (str "joint " (pr-str name) " is built " (format "%.3f" (+ off trigger))
+                     " rad outside its limits " (pr-str (:limit description))
+                     ": at the first step it is turned to within "
+                     (first (projection/slack :hinge)) " rad of them (see org/projection.org);"
+                     " build the creature in a pose within its limits, or widen them")})))
+
 (def ^:private record-key "cortex.body")
 
 (defn- label [^Node creature] (str "creature " (pr-str (.getName creature))))
@@ -1031,7 +1050,8 @@
              joined (set (map #(set (:geoms %)) made))
              warnings (vec (concat (map #(assoc % :relaxed? true) doubts)
                                    (filter :warning? naming)
-                                   (overlap-warnings index joined)))]
+                                   (overlap-warnings index joined)
+                                   (limit-warnings made)))]
          (log-warnings! creature warnings)
          (.setUserData creature record-key
                        {:joints made :warnings warnings :tolerance tol}))))

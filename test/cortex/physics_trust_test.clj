@@ -3,6 +3,7 @@
   (:require [clojure.test :refer [deftest is testing]]
             [cortex.body :as body]
             [cortex.engine :as engine]
+            [cortex.projection :as projection]
             [cortex.proprioception :as p]
             [cortex.sim :as sim]
             [cortex.util :as util])
@@ -149,6 +150,20 @@
           (format "a joint went %.2f times its allowance past its limit" worst-past))
       (is (some? still-at) "never came to rest")
       (is (< moved 0.02) (format "moved %.4f between 8 s and 10 s" moved)))))
+
+(deftest a-hinge-built-outside-its-limits-is-said-and-turned-in
+  (let [c ((requiring-resolve 'cortex.joint-fixtures/two-segments)
+           "{:type :hinge :limit [0.5 1.5] :axis [0 0 1]}")
+        _ (body/body! c)
+        [w] (filter #(= :built-outside-limits (:kind %)) (:warnings (body/report c)))
+        s (sim/simulation c {:gravity [0 0 0] :observe #{:joints}})
+        angle (get-in (sim/step! s) [:joints "elbow" :angle])]
+    (is (= "elbow" (:joint w)))
+    (is (re-find #"joint \"elbow\" is built 0.500 rad outside its limits \[0.5 1.5\]" (:message w)))
+    ;; built at 0; after one step within its limits, or at most the
+    ;; trigger short of them
+    (is (<= (- 0.5 (first (projection/slack :hinge))) (double angle) 1.5)
+        (format "turned to %.4f" angle))))
 
 (deftest without-projection-the-humanoids-pass-their-limits
   ;; what the default buys: the same drops, projection turned off
