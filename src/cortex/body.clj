@@ -746,19 +746,17 @@
         _ (when-not (every? #(<= (- Math/PI) (double %) Math/PI) limit)
             (throw (angle-error "hinge :limit" limit "[-pi, pi]")))
         axis (util/blender-to-jme (.normalize axis))
-        [low high] (jbullet-hinge-limits limit)]
+        [low high] (jbullet-hinge-limits limit)
+        axis-limit {:axis [(.x ^Vector3f axis) (.y ^Vector3f axis) (.z ^Vector3f axis)]
+                    :limit (mapv double limit)}]
     (-> (HingeJoint. ^PhysicsRigidBody control-a ^PhysicsRigidBody control-b
                      ^Vector3f pivot-a ^Vector3f pivot-b
                      (.mult (body-frame control-a rotation) axis)
                      (.mult (body-frame control-b rotation) axis))
         (engine/zero-hinge!)
         (engine/limit-hinge! low high)
-        (hold-limits! control-a control-b rotation
-                      {:axis [(.x ^Vector3f axis) (.y ^Vector3f axis) (.z ^Vector3f axis)]
-                       :limit (mapv double limit)}
-                      {:type :hinge
-                       :axis [(.x ^Vector3f axis) (.y ^Vector3f axis) (.z ^Vector3f axis)]
-                       :limit (mapv double limit)}))))
+        ;; the rows and projection read the hinge the same way
+        (hold-limits! control-a control-b rotation axis-limit (assoc axis-limit :type :hinge)))))
 
 (defn- cone-limits
   "[frame-turn [x-limit y-limit z-limit]] for a cone of swing limits
@@ -969,7 +967,7 @@
        :message (str "joint " (pr-str name) " is built " (format "%.3f" (+ off trigger))
                      " rad outside its limits " (pr-str (:limit description))
                      ": at the first step it is turned to within "
-                     (first (projection/slack :hinge)) " rad of them (see org/projection.org);"
+                     trigger " rad of them (see org/projection.org);"
                      " build the creature in a pose within its limits, or widen them")})))
 
 (def ^:private record-key "cortex.body")
