@@ -80,6 +80,19 @@
   [proc seconds]
   (some-> (wait-for proc #"nREPL server started on port (\d+)" seconds) second Long/parseLong))
 
+(defn- port-file-says
+  "What .nrepl-port holds once it holds something, waiting up to
+  `seconds`: Leiningen prints the port a moment before it writes the
+  file, as an editor that polls the file would see."
+  [seconds]
+  (let [file (File. ".nrepl-port")
+        deadline (+ (System/currentTimeMillis) (* 1000 seconds))]
+    (loop []
+      (let [text (when (.exists file) (str/trim (slurp file)))]
+        (if (or (seq text) (> (System/currentTimeMillis) deadline))
+          text
+          (do (Thread/sleep 50) (recur)))))))
+
 (defn- start-xvfb
   "Start Xvfb on a free display. Returns {:process p :display \":N\"},
   or nil when Xvfb cannot be started."
@@ -378,7 +391,7 @@
       (let [port (port-in proc 180)]
         (is port (str (:output proc)))
         (when port
-          (is (= (str port) (str/trim (slurp ".nrepl-port"))) "editors find it in .nrepl-port")
+          (is (= (str port) (port-file-says 20)) "editors find it in .nrepl-port")
           (with-open [conn (connect port)]
             (is (= 3 (value conn "(+ 1 2)")))
             (is (= 'user (value conn "(ns-name *ns*)"))))))
