@@ -11,7 +11,8 @@
     {\"hip\" [0 0.3 0]}           torque in a cone or point joint's frame
     {\"knee\" {:target 0.4}}      PD towards a hinge angle, rad
     {\"hip\" {:target [0 0.2 0]}} PD towards a relative rotation vector
-    (a :target map may give :kp and :kd for the step)
+    (a :target map may give :kp and :kd for the step; a cone or point
+    joint has a gain per axis of its frame, [x y z], or one for all)
 
   Vectors are in the joint empty's frame, Blender's axes, as
   cortex.proprioception reads them. A torque is internal: +t on the
@@ -86,9 +87,18 @@
                                      "; change it in the joint empty's joint property")
                                 {:joint name k v})))))
 
+(defn- blender-order
+  "Three per-axis values of a joint frame, given for jME's X, Y and Z,
+  in the order of Blender's axes (X, Y, Z = jME's X, -Z, Y), the axes
+  actions and errors are given in."
+  [[x y z]]
+  [x z y])
+
 (defn muscle
   "What acting on the joint of proprioception sensor `sensor` needs:
-  the sensor with :strength, :kp, :kd and :inertia."
+  the sensor with :strength, :kp, :kd and :inertia; for a cone or point
+  joint :kp, :kd and :inertia are [x y z], one per axis of the joint's
+  frame in Blender's axes."
   [{:keys [type axis frame-a frame-b rb-a rb-b record] :as sensor}]
   (let [^PhysicsJoint j (:physics-joint record)
         [pa pb] (map v3 (engine/pivots j))
@@ -101,17 +111,23 @@
                   (let [ia (pivot-inertia rb-a (p/rotate frame-a ax) pin-a)
                         ib (pivot-inertia rb-b (p/rotate frame-b ax) pin-b)]
                     (/ 1.0 (+ (/ 1.0 ia) (/ 1.0 ib)))))
-        least (fn [pin-a pin-b]
-                (let [i (if (= type :hinge)
-                          (reduced axis pin-a pin-b)
-                          (apply min (map #(reduced % pin-a pin-b) [[1 0 0] [0 1 0] [0 0 1]])))]
+        about (fn [ax pin-a pin-b]
+                (let [i (reduced ax pin-a pin-b)]
                   (if (and (Double/isFinite i) (pos? i)) i 1.0)))
-        inertia (least pa pb)
-        own (min inertia (least [0 0 0] [0 0 0]))
-        gains (default-gains strength inertia own)]
-    (assoc sensor :strength strength :inertia inertia
-           :kp (given sensor :kp #(:kp gains))
-           :kd (given sensor :kd #(:kd gains)))))
+        ;; [pin's moment, own moments] about one axis
+        sized (fn [ax] (let [i (about ax pa pb)]
+                         [i (default-gains strength i (min i (about ax [0 0 0] [0 0 0])))]))
+        given-or (fn [k gains] (given sensor k #(gains k)))]
+    (if (= type :hinge)
+      (let [[inertia gains] (sized axis)]
+        (assoc sensor :strength strength :inertia inertia
+               :kp (given-or :kp gains) :kd (given-or :kd gains)))
+      (let [axes (blender-order (map sized [[1 0 0] [0 1 0] [0 0 1]]))
+            ;; a gain in the description is the same on every axis
+            gain (fn [k] (let [g (given sensor k (constantly nil))]
+                           (if g [g g g] (mapv #(get (second %) k) axes))))]
+        (assoc sensor :strength strength :inertia (mapv first axes)
+               :kp (gain :kp) :kd (gain :kd))))))
 
 (defn muscles
   "The muscles of `creature` (built by cortex.body/body!), by joint name."
@@ -129,19 +145,25 @@
         (mapv double effort)
         (mapv #(* (/ strength n) (double %)) effort)))))
 
+(defn- per-axis
+  "A gain as three, one per axis: a number the same on each."
+  [g]
+  (if (number? g) [g g g] g))
+
 (defn- pd-torque
   "The PD torque, unclamped, towards `target` for `muscle` as it is now."
   [{:keys [type axis] :as muscle} {:keys [target] :as action}]
-  (let [kp (double (get action :kp (:kp muscle)))
-        kd (double (get action :kd (:kd muscle)))
+  (let [kp (get action :kp (:kp muscle))
+        kd (get action :kd (:kd muscle))
         q (p/relative-rotation muscle)
         w (p/relative-angular-velocity muscle)]
     (if (= type :hinge)
-      (- (* kp (p/wrap-angle (- (double target) (p/twist-angle q axis))))
-         (* kd (p/dot w axis)))
+      (- (* (double kp) (p/wrap-angle (- (double target) (p/twist-angle q axis))))
+         (* (double kd) (p/dot w axis)))
       (let [error (p/rotation-vector (p/q* (p/from-rotation-vector target)
                                            (p/q-conj (p/jme->blender q))))]
-        (mapv #(- (* kp (double %1)) (* kd (double %2))) error (p/jme->blender w))))))
+        (mapv #(- (* (double %3) (double %1)) (* (double %4) (double %2)))
+              error (p/jme->blender w) (per-axis kp) (per-axis kd))))))
 
 (defn- fail
   [joint message data]
@@ -171,10 +193,13 @@
           (fail name (str "a " (clojure.core/name type) " joint takes " (takes type)
                           ", not " (pr-str action)) {:action action}))
         (doseq [k [:kp :kd]
-                :let [g (get action k)]
+                :let [g (get action k)
+                      gain? #(and (finite? %) (not (neg? (double %))))]
                 :when (some? g)]
-          (when-not (and (finite? g) (not (neg? (double g))))
-            (fail name (str k " must be a finite, non-negative number, not " (pr-str g))
+          (when-not (or (gain? g) (and (not hinge?) (finite-vector? g) (every? gain? g)))
+            (fail name (str k " must be a finite, non-negative number"
+                            (when-not hinge? " or three of them, [x y z]")
+                            ", not " (pr-str g))
                   {:action action})))
         (clamp (pd-torque muscle action) strength))
 

@@ -73,6 +73,31 @@
       (testing (str "target " target)
         (is (every? #(< (Math/abs (- (double %) (double target))) 0.02) (subvec as 240)))))))
 
+(deftest a-cone-has-a-gain-per-axis
+  (let [cone "{:type :cone :limit-xz 0.5 :limit-xy 0.5 :twist 0.3}"
+        {:keys [kp kd inertia strength]} ((m/muscles (body/body! (f/two-segments cone))) "elbow")
+        twist (/ (/ (+ 0.16 0.16) 12) 2)
+        swing (/ (+ (/ (+ 3.61 0.16) 12) 1) 2)
+        near? (fn [a b tolerance] (< (Math/abs (- (double a) (double b))) tolerance))]
+    (is (near? (inertia 0) twist 1e-4))
+    (is (every? #(near? % swing 1e-3) (rest inertia)))
+    (is (every? true? (map #(near? %1 (min (/ strength 0.02) (* %2 900)) 1e-9) kp inertia)))
+    (is (near? (kp 0) 12.0 0.05))
+    (is (> (kp 1) (* 40 (kp 0))))
+    (is (every? pos? kd)))
+  (let [s (sim/simulation (f/two-segments "{:type :cone :limit-xz 0.5 :limit-xy 0.5 :twist 0.3}"
+                                          Quaternion/IDENTITY [0 1] 0)
+                          {:gravity [0 -9.81 0]})
+        swings (vec (for [_ (range 300)]
+                      (let [[a b] (get-in (sim/step! s {"elbow" {:target [0 0 0]}}) [:joints "elbow" :swing])]
+                        (Math/sqrt (+ (* a a) (* b b))))))]
+    (is (every? #(< % 0.03) (subvec swings 240)) (str "swing " (peek swings))))
+  (testing "an action may give a gain per axis, checked like one"
+    (let [s (sim/simulation (f/two-segments "{:type :cone :limit-xz 0.5 :limit-xy 0.5 :twist 0.3}"))]
+      (is (map? (sim/step! s {"elbow" {:target [0 0.1 0] :kp [1 2 3] :kd 0.5}})))
+      (is (thrown-with-msg? clojure.lang.ExceptionInfo #"joint \"elbow\": :kp must be .* or three of them"
+                            (sim/step! s {"elbow" {:target [0 0.1 0] :kp [1 -2 3]}}))))))
+
 (deftest a-pd-target-settles-floating-free
   (let [s (sim/simulation (util/load-blender-model f/worm-path) {:gravity [0 0 0]})
         obs (vec (for [_ (range 120)] (sim/step! s {"worm-joint" {:target 0.5}})))]
