@@ -100,11 +100,14 @@
                                      (/ (reduce + (for [[_ {[_ y] :position}] (:segments obs)] (+ y 0.2)))
                                         (count (:segments obs)))))}}))
 
-(defn- json
-  "`x` (maps, strings, numbers) as JSON text."
+(defn json
+  "`x` (maps, sequences, strings, keywords, numbers, nil) as JSON text."
   [x]
   (cond (map? x) (str "{" (str/join ", " (for [[k v] x] (str (json (name k)) ": " (json v)))) "}")
+        (sequential? x) (str "[" (str/join ", " (map json x)) "]")
+        (keyword? x) (json (name x))
         (string? x) (str "\"" (str/replace x "\"" "\\\"") "\"")
+        (nil? x) "null"
         :else (str x)))
 
 (defn -main
