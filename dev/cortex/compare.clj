@@ -3,7 +3,9 @@
   "cortex's side of scripts/compare/humanoid_compare.py: the humanoid
   and a 100-segment chain dropped in cortex.sim, timed, written as JSON.
 
-  Entry point: `-main` (lein run -m cortex.compare [OUT.json] [runs])."
+  Entry points: `-main` (lein run -m cortex.compare [OUT.json] [runs];
+  lein run -m cortex.compare costs [runs]), `step-costs` (where a
+  step's time goes), `json`."
   (:require [clojure.java.io :as io]
             [clojure.string :as str]
             [cortex.body :as body]
@@ -110,13 +112,45 @@
         (nil? x) "null"
         :else (str x)))
 
+(def ^:private cost-settings
+  "What step-costs takes apart: the humanoid floating (no contacts) or
+  lying where it fell, at the defaults or at one iteration without
+  projection."
+  [["floating, defaults" {:gravity [0 0 0]}]
+   ["floating, 1 iteration, no projection" {:gravity [0 0 0] :solver {:iterations 1 :projection false}}]
+   ["lying, defaults" {:floor {:height floor-z :friction 1.0}}]
+   ["lying, 1 iteration, no projection" {:floor {:height floor-z :friction 1.0}
+                                         :solver {:iterations 1 :projection false}}]])
+
+(defn step-costs
+  "Microseconds of CPU a step of the humanoid takes in each of
+  `cost-settings` (sleeping off; 1,000 steps, then 5,000 timed), the
+  median of `runs` interleaved runs: [[label us] ...]."
+  [runs]
+  (let [one (fn [opts]
+              (let [c (body/body! ^Node (util/load-blender-model "test/fixtures/humanoid/humanoid.blend")
+                                  {:sleeping-thresholds [0 0]})
+                    s (sim/simulation c (assoc opts :observe #{}))]
+                (dotimes [_ 1000] (sim/step! s))
+                (let [t0 (cpu-ns)]
+                  (dotimes [_ 5000] (sim/step! s))
+                  (/ (- (cpu-ns) t0) 5000 1e3))))
+        timings (apply map vector (for [_ (range runs)] (mapv (comp one second) cost-settings)))]
+    (mapv (fn [[label] ts] [label (median ts)]) cost-settings timings)))
+
 (defn -main
-  "lein run -m cortex.compare [OUT.json] [runs]"
+  "lein run -m cortex.compare [OUT.json] [runs]
+  lein run -m cortex.compare costs [runs]"
   [& [out runs]]
-  (let [out (or out "out/bench/cortex-humanoid.json")
-        m (measure (Long/parseLong (or runs "3")))]
-    (io/make-parents out)
-    (spit out (json m))
-    (println (json m))
-    (println "wrote" out)
-    (shutdown-agents)))
+  (if (= "costs" out)
+    (do (println cortex.engine/name "- microseconds a step of the humanoid, sleeping off:")
+        (doseq [[label us] (step-costs (Long/parseLong (or runs "3")))]
+          (println (format "%-40s %6.1f" label (double us))))
+        (shutdown-agents))
+    (let [out (or out "out/bench/cortex-humanoid.json")
+          m (measure (Long/parseLong (or runs "3")))]
+      (io/make-parents out)
+      (spit out (json m))
+      (println (json m))
+      (println "wrote" out)
+      (shutdown-agents))))
