@@ -234,6 +234,14 @@
                                         (util/blender-to-jme (com.jme3.math.Vector3f.
                                                               (float ax) (float ay) (float az)))))))}))}))
 
+(deftest the-whips-reference-is-of-this-creature
+  (let [{:keys [segments joints]} (export (util/load-blender-model (creatures "quadruped")))]
+    (doseq [friction [0.25 0.5 1.0]]
+      (is (= (set (map :name segments))
+             (set (keys (get (reference "quadruped" friction) "speeds"))))))
+    (is (= 13 (count joints)))
+    (is (= #{:point} (set (for [j joints :when (re-find #"^tail" (:name j))] (:type (:description j))))))))
+
 (defn- swing-into-limit
   "The largest angle a beam hinged to a fixed post (limits +-0.3 rad)
   reaches in 2 s when swung at `w` rad/s, with no gravity; built without
