@@ -3,19 +3,40 @@
   "A creature placed and built as the drop test does it, written as JSON
   for scripts/compare/quadruped_whip.py (the physics-trust chapter).
 
-  Entry point: `-main` (lein run -m cortex.export FILE.blend OUT.json)."
+  Entry point: `-main` (lein run -m cortex.export FILE.blend OUT.json;
+  lein run -m cortex.export speeds FILE.blend OUT.csv [friction]: every
+  segment's speed at every step of the drop's first 3 s)."
   (:require [clojure.java.io :as io]
+            [clojure.string :as str]
             [cortex.compare :as compare]
+            [cortex.engine :as engine]
             [cortex.physics-trust-test :as trust]
             [cortex.util :as util]))
 
 (set! *warn-on-reflection* true)
 
+(defn- speeds-csv
+  "`series` (see cortex.physics-trust-test/speeds) as CSV text: a
+  comment naming the engine and floor, a header, a row a step."
+  [series friction]
+  (let [names (keys (second (first series)))]
+    (str "# engine: cortex (" ({:jbullet "jBullet" :native "native Bullet"} engine/name)
+         "), friction " friction ", step 1/60 s\n"
+         (str/join "," (cons "time" names)) "\n"
+         (str/join (for [[t ss] series]
+                     (str (str/join "," (cons (format "%.4f" (double t))
+                                              (map #(format "%.4f" (double (ss %))) names)))
+                          "\n"))))))
+
 (defn -main
-  "lein run -m cortex.export FILE.blend OUT.json"
-  [file out]
-  (let [data (trust/export (util/load-blender-model file))]
+  "lein run -m cortex.export FILE.blend OUT.json
+  lein run -m cortex.export speeds FILE.blend OUT.csv [friction]"
+  [& [a b c d]]
+  (let [[out text] (if (= "speeds" a)
+                     (let [friction (Double/parseDouble (or d "0.5"))]
+                       [c (speeds-csv (trust/speeds (util/load-blender-model b) friction 180) friction)])
+                     [b (compare/json (trust/export (util/load-blender-model a)))])]
     (io/make-parents (io/file out))
-    (spit out (compare/json data))
+    (spit out text)
     (println "wrote" out)
     (shutdown-agents)))

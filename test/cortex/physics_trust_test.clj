@@ -234,6 +234,18 @@
                                         (util/blender-to-jme (com.jme3.math.Vector3f.
                                                               (float ax) (float ay) (float az)))))))}))}))
 
+(defn speeds
+  "Every segment's speed, m/s, after each of `steps` steps of
+  `creature` (a Node, not yet built) dropped as `drop!` drops it on a
+  floor of `friction`: [[seconds {segment speed}] ...]."
+  [^Node creature friction steps]
+  (place! creature)
+  (let [s (sim/simulation creature {:floor {:height 0 :friction friction} :observe #{:segments}})]
+    (vec (for [i (range 1 (inc steps))
+               :let [obs (sim/step! s)]]
+           [(/ i 60.0) (into (sorted-map) (for [[n {v :velocity}] (:segments obs)]
+                                            [n (Math/sqrt (reduce + (map * v v)))]))]))))
+
 (deftest the-whips-reference-is-of-this-creature
   (let [{:keys [segments joints]} (export (util/load-blender-model (creatures "quadruped")))]
     (doseq [friction [0.25 0.5 1.0]]
