@@ -89,7 +89,7 @@
         h (vec (repeatedly runs #(timed-run humanoid floor-z 1000 10000)))
         c (vec (repeatedly runs #(timed-run chain -0.2 1000 10000)))
         height (fn [obs seg floor] (- (double (second (get-in obs [:segments seg :position]))) floor))]
-    {:engine (str "cortex (" ({:jbullet "jBullet" :native "native Bullet"} cortex.engine/name) ")")
+    {:engine (str "cortex (" cortex.engine/label ")")
      :image (picture! (nth (peek h) 3) (str "out/compare/cortex-humanoid-" (name cortex.engine/name) ".png"))
      :chain_image (picture! (nth (peek c) 3) (str "out/compare/cortex-chain-" (name cortex.engine/name) ".png"))
      :settings (str cortex.engine/solver-iterations " solver iterations, projection"

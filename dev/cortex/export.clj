@@ -20,7 +20,7 @@
   comment naming the engine and floor, a header, a row a step."
   [series friction]
   (let [names (keys (second (first series)))]
-    (str "# engine: cortex (" ({:jbullet "jBullet" :native "native Bullet"} engine/name)
+    (str "# engine: cortex (" engine/label
          "), friction " friction ", step 1/60 s\n"
          (str/join "," (cons "time" names)) "\n"
          (str/join (for [[t ss] series]

@@ -31,6 +31,10 @@
   "Which engine this is: :jbullet or :native."
   :jbullet)
 
+(def label
+  "This engine's name as people read it, for reports."
+  "jBullet")
+
 (defn rigid-body
   "The engine's own object for the jME body `body` (a RigidBodyControl
   or PhysicsRigidBody): here jBullet's RigidBody."

@@ -28,6 +28,10 @@
   "Which engine this is: :jbullet or :native."
   :native)
 
+(def label
+  "This engine's name as people read it, for reports."
+  "native Bullet")
+
 (defonce ^{:private true
            :doc "Minie's native library, loaded once, when this namespace is:
   jME 3.2.4's loader knows the library's name but not where Minie keeps
