@@ -24,11 +24,13 @@ legs, neck, head and a three-segment tail) with.
 
 What it runs: the creature of EXPORT.json, as cortex exports it (jME axes,
 Y up, floor at y = 0; each segment's mass, centre of mass, principal frame
-quat [x y z w], principal moments and world vertices; each joint's parent
-and child segments, pivot, type and limits, and world axis for hinges),
-turned into MuJoCo's Z-up axes (x, y, z) -> (x, -z, y).  The body that is no
-joint's child is the root and gets a free joint; nothing is named in the
-code, so any tree (a hand, a chain) works.  Every body starts at rest where
+quat [x y z w], principal moments and world vertices; each joint's two
+segments, pivot, type and limits, and world axis for hinges), turned into
+MuJoCo's Z-up axes (x, y, z) -> (x, -z, y).  The heaviest segment is the
+root and gets a free joint; the tree grows from it (a joint whose segments
+are named child first is turned round, its hinge range negated); nothing is
+named in the code, so any tree (a hand, a chain) works, and a creature whose
+joints close a loop is refused with the joint named (MuJoCo needs a tree).  Every body starts at rest where
 the export puts it and falls onto the floor, for each friction: friction on
 every geom and the floor (torsional and rolling MuJoCo's defaults),
 implicitfast, time step --dt, MuJoCo's other defaults (pyramidal cones,
@@ -113,13 +115,33 @@ def build_xml(export, friction, dt):
     """MJCF of the creature: bodies world-aligned at their centres of mass,
     inertia and box geom turned into each body's principal frame."""
     seg = {s["name"]: s for s in export["segments"]}
-    joint_of, children = {}, {}
-    for j in export["joints"]:
-        parent, child = j["segments"]
-        assert child not in joint_of, f"{child} is the child of two joints"
-        joint_of[child] = j
-        children.setdefault(parent, []).append(child)
-    roots = [n for n in seg if n not in joint_of]
+    # The tree: from the heaviest segment of each connected part outwards
+    # (cortex names a joint's two segments in no particular order).  A
+    # joint named child-first is turned round: its hinge range negated.
+    joint_of, children, flipped, roots = {}, {}, set(), []
+    unplaced = sorted(seg, key=lambda n: (-seg[n]["mass"], n))
+    placed = set()
+    while unplaced:
+        root = unplaced[0]
+        roots.append(root)
+        placed.add(root)
+        queue = [root]
+        while queue:
+            parent = queue.pop(0)
+            for j in export["joints"]:
+                a, b = j["segments"]
+                if parent not in (a, b) or j["name"] in {k["name"] for k in joint_of.values()}:
+                    continue
+                child = b if a == parent else a
+                if child in placed:
+                    raise ValueError(f'joint {j["name"]}: closes a loop; MuJoCo needs a tree')
+                if child != b:
+                    flipped.add(j["name"])
+                joint_of[child] = j
+                children.setdefault(parent, []).append(child)
+                placed.add(child)
+                queue.append(child)
+        unplaced = [n for n in unplaced if n not in placed]
 
     def body(name, parent_com, ind):
         s = seg[name]
@@ -144,6 +166,8 @@ def build_xml(export, friction, dt):
                            f' limited="true" range="0 {r!r}"/>')
             elif desc["type"] == "hinge":
                 lo_h, hi_h = desc["limit"]
+                if j["name"] in flipped:
+                    lo_h, hi_h = -hi_h, -lo_h
                 out.append(f'{ind}  <joint name="{j["name"]}" type="hinge" pos="{pos}"'
                            f' axis="{f3(cv(j["world-axis"]))}" limited="true"'
                            f' range="{lo_h!r} {hi_h!r}"/>')
