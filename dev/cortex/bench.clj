@@ -10,12 +10,11 @@
             [cortex.bench.creatures :as creatures]
             [cortex.blender-bench :as blender-bench]
             [cortex.body :as body]
-            [cortex.projection]
             [cortex.sim :as sim]
             [cortex.util :as util]
             [cortex.world :as world])
   (:import (com.jme3.bounding BoundingBox)
-           (com.jme3.bullet PhysicsSpace PhysicsSpace$BroadphaseType)
+           (com.jme3.bullet PhysicsSpace)
            (com.jme3.bullet.control RigidBodyControl)
            (com.jme3.bullet.objects PhysicsRigidBody)
            (com.jme3.math Vector3f)
@@ -208,14 +207,10 @@
     {:stamps (vec stamps) :states (body-states creature)}))
 
 (defn bare-space
-  "A Bullet space made as BulletAppState makes one: world bounds of
-  +-10000 and the DBVT broadphase, set up as cortex's worlds are
-  (`cortex.engine/configure-space!`, `cortex.projection/install!`)."
+  "A Bullet space made as BulletAppState makes one and set up as
+  cortex's worlds are: the step loop's own (`cortex.sim/physics-space`)."
   ^PhysicsSpace []
-  (cortex.projection/install!
-   (cortex.engine/configure-space!
-    (PhysicsSpace. (Vector3f. -10000 -10000 -10000) (Vector3f. 10000 10000 10000)
-                   PhysicsSpace$BroadphaseType/DBVT))))
+  (sim/physics-space))
 
 (defn- step-bare!
   "Put the bodies under `root` into a new bare space, under earth's
