@@ -268,9 +268,10 @@
   "What `body!` uses when not told otherwise:
   :strict?            refuse joints it has doubts about (true), or build
                       them and record a warning (false);
-  :tolerance          how far a joint empty may be from the segments it
-                      joins, in world units; nil for a tenth of the
-                      creature's median segment size;
+  :tolerance          the ambiguity window: a segment within this of a
+                      joint's second nearest (an eye's nearest) makes
+                      the pair doubtful; in world units, nil for a
+                      tenth of the creature's median segment size;
   :angular-damping    each segment's, see above;
   :sleeping-thresholds [linear m/s, angular rad/s] below which a body
                       at rest for 2 s is put to sleep;
@@ -282,6 +283,33 @@
    :angular-damping 0.5
    :sleeping-thresholds [0.8 3.0]
    :mass-properties :mesh})
+
+(defn- label [^Node creature] (str "creature " (pr-str (.getName creature))))
+
+(defn- in-creature
+  "Run `f`; an ex-info it throws comes out prefixed with the creature."
+  [^Node creature f]
+  (try (f)
+       (catch clojure.lang.ExceptionInfo e
+         (throw (ex-info (str (label creature) ", " (ex-message e))
+                         (assoc (ex-data e) :creature (.getName creature)) e)))))
+
+(defn- check-solid!
+  "Throw an ex-info naming segment `geom` when its world scale flattens
+  it (zero along an axis, or so small that a float holds no volume: jME
+  could not invert its transform), or when its mass properties `plan`
+  are beyond what Bullet's floats hold (a vertex thrown far off, as in
+  a damaged file)."
+  [^Geometry geom {:keys [centre moments]}]
+  (let [^Vector3f s (.getWorldScale geom)
+        too-big? #(> (Math/abs (double %)) Float/MAX_VALUE)
+        fail #(throw (ex-info (str "segment " (pr-str (segment-name geom)) ": " %
+                                   " (check the object, its parents and its mesh in Blender)")
+                              {:object (segment-name geom)}))]
+    (cond (zero? (float (* (.x s) (.y s) (.z s))))
+          (fail (str "its scale in the world, " s ", leaves it no volume"))
+          (some too-big? (concat centre moments))
+          (fail "its mesh reaches too far from its origin for its mass properties to fit in a float"))))
 
 (defn physical!
   "Make every segment of `creature` solid: a rigid body with a convex
@@ -295,15 +323,19 @@
      (.updateGeometricState creature)
      (doseq [^Geometry geom (segments creature)
              :when (nil? (.getControl geom RigidBodyControl))]
-       (check-placement! "segment" geom)
-       (let [m (mass geom)
-             plan (if (= :box mass-properties) {:source :box} (inertia-plan geom m))]
-         (.setUserData geom "cortex.body/mass" plan)
-         (doto (make-body geom m plan)
-           (.setFriction (float (property geom "friction" 0.5)))
-           (.setRestitution (float (property geom "restitution" 0.0)))
-           (.setSleepingThresholds (float lin) (float ang))
-           (.setAngularDamping (float angular-damping))))))
+       (in-creature
+        creature
+        (fn []
+          (check-placement! "segment" geom)
+          (let [m (mass geom)
+                plan (if (= :box mass-properties) {:source :box} (inertia-plan geom m))]
+            (check-solid! geom plan)
+            (.setUserData geom "cortex.body/mass" plan)
+            (doto (make-body geom m plan)
+              (.setFriction (float (property geom "friction" 0.5)))
+              (.setRestitution (float (property geom "restitution" 0.0)))
+              (.setSleepingThresholds (float lin) (float ang))
+              (.setAngularDamping (float angular-damping))))))))
    creature))
 
 (def ^{:doc "The children of the creature's \"joints\" node: one empty
@@ -342,10 +374,22 @@
       [i j k])))
 
 (defn- cell-count
-  [cell lo hi]
-  (reduce * (map #(inc (- (long (Math/floor (/ (double %2) cell)))
-                          (long (Math/floor (/ (double %1) cell)))))
-                 lo hi)))
+  "How many cells the box from `lo` to `hi` covers, counted in doubles:
+  a box far out or huge (a damaged file's) covers more than a long
+  holds."
+  ^double [cell lo hi]
+  (reduce * 1.0 (map #(inc (- (Math/floor (/ (double %2) cell))
+                              (Math/floor (/ (double %1) cell))))
+                     lo hi)))
+
+(defn- gridded?
+  "Whether the box from `lo` to `hi` goes in the grid: it covers at most
+  `most` cells, numbered by whole numbers that a long holds (a box
+  a hundred thousand billion cells out, or with no finite corners, is
+  kept aside and checked every time instead)."
+  [cell lo hi most]
+  (and (<= (cell-count cell lo hi) (double most))
+       (every? #(< (Math/abs (Math/floor (/ (double %) cell))) 1e14) (concat lo hi))))
 
 (defn segment-index
   "The physical segments of `parts` indexed by where they are: each
@@ -358,9 +402,9 @@
   (let [items (vec (for [g (segments parts) :when (physical? g)]
                      (let [[lo hi] (corners g)] {:geom g :lo lo :hi hi})))
         sizes (sort (for [{:keys [lo hi]} items] (apply max (map - hi lo))))
-        cell (max 1e-3 (if (seq sizes) (nth sizes (quot (count sizes) 2)) 1.0))
-        {big true small false} (group-by #(let [{:keys [lo hi]} (items %)]
-                                            (> (cell-count cell lo hi) max-cells-per-segment))
+        cell (max 1e-9 (if (seq sizes) (nth sizes (quot (count sizes) 2)) 1.0))
+        {big false small true} (group-by #(let [{:keys [lo hi]} (items %)]
+                                            (gridded? cell lo hi max-cells-per-segment))
                                          (range (count items)))
         grid (reduce (fn [grid i]
                        (let [{:keys [lo hi]} (items i)]
@@ -377,7 +421,7 @@
 (defn- nearby
   "The items of `index` whose bounds meet the box from `lo` to `hi`."
   [{:keys [items cell grid big]} lo hi]
-  (let [candidates (if (> (cell-count cell lo hi) (count items))
+  (let [candidates (if-not (gridded? cell lo hi (count items))
                      (range (count items))
                      (distinct (concat (mapcat grid (cell-range cell lo hi)) big)))]
     (for [i (sort candidates)
@@ -418,10 +462,11 @@
 
 (defn- reach-of
   "The half-width of the smallest cube centred on `center` that touches
-  `geom`'s triangles, knowing that one of half-width `hi` does."
+  `geom`'s triangles, to a millionth of itself (or after 40 halvings),
+  knowing that one of half-width `hi` does."
   [geom center hi]
   (loop [lo 0.0 hi (double hi) i 0]
-    (if (= i 20)
+    (if (or (= i 40) (<= (- hi lo) (* 1e-6 hi)))
       hi
       (let [mid (/ (+ lo hi) 2)]
         (if (touches? geom center mid)
@@ -486,12 +531,37 @@
   (targets-near (segment-index parts) joint))
 
 (defn tolerance
-  "How far a joint empty of the indexed creature may be from the two
-  segments it joins: a tenth of the median segment size."
+  "The indexed creature's ambiguity window: a third segment within this
+  of a joint's second nearest (or, for an eye, a second within this of
+  its nearest) makes the pair doubtful. A tenth of the median segment
+  size."
   [index]
   (* 0.1 (double (:cell index))))
 
-(defn- fmt [x] (format "%.3f" (double x)))
+(defn segment-sides
+  "The sides of `geom`'s mesh bounds in its own axes, at its world
+  scale, shortest first: how thick, wide and long the segment is,
+  however it is turned."
+  [^Geometry geom]
+  (let [b (.getBound (.getMesh geom))
+        ^Vector3f s (.getWorldScale geom)
+        [ex ey ez] (if (instance? BoundingBox b)
+                     [(.getXExtent ^BoundingBox b) (.getYExtent ^BoundingBox b)
+                      (.getZExtent ^BoundingBox b)]
+                     (repeat 3 (.getRadius ^com.jme3.bounding.BoundingSphere b)))]
+    (vec (sort (map #(* 2.0 (Math/abs (double %1)) (double %2)) [(.x s) (.y s) (.z s)] [ex ey ez])))))
+
+(defn fmt-length
+  "`x`, a length, as text: three decimals, or more for a small one, so
+  that a creature a hundredth of the size reads three figures too."
+  [x]
+  (let [x (double x)
+        places (if (or (zero? x) (not (Double/isFinite x)))
+                 3
+                 (max 3 (- 2 (long (Math/floor (Math/log10 (Math/abs x)))))))]
+    (format (str "%." places "f") x)))
+
+(def ^:private fmt fmt-length)
 
 (defn- distances-text
   [measured]
@@ -500,11 +570,16 @@
 
 (defn joint-doubts
   "The doubts about joint empty `joint-name` given its `measured` nearest
-  segments (see `nearest-segments`) and the creature's `tolerance`: maps
-  of :kind (:ambiguous-joint or :far-joint), :joint, :segments,
-  :distances, :tolerance and a :message saying what to change."
+  segments (see `nearest-segments`) and the creature's `tolerance` (the
+  ambiguity window): maps of :kind (:ambiguous-joint or :far-joint),
+  :joint, :segments, :distances, :tolerance, for a far joint :allowed
+  (half of each segment's thinnest side), and a :message saying what to
+  change."
   [joint-name measured tolerance]
   (let [[a b & more] measured
+        allowed (into {} (for [{:keys [name geom]} [a b]]
+                           [name (* 0.5 (double (first (segment-sides geom))))]))
+        outside (filter #(> (double (:distance %)) (double (allowed (:name %)))) [a b])
         base {:joint joint-name :tolerance tolerance
               :distances (into {} (map (juxt :name :distance)) measured)}]
     (cond-> []
@@ -516,13 +591,17 @@
                                  "; the tolerance is " (fmt tolerance) "), so which two it joins"
                                  " cannot be told; move the empty into the gap between the two"
                                  " it should join, with every other segment farther away")))
-      (> (double (:distance b)) (double tolerance))
+      (seq outside)
       (conj (assoc base :kind :far-joint
                    :segments [(:name a) (:name b)]
+                   :allowed allowed
                    :message (str "joint " (pr-str joint-name) " is " (fmt (:distance a))
                                  " from " (:name a) " and " (fmt (:distance b)) " from "
-                                 (:name b) ", more than the tolerance " (fmt tolerance)
-                                 "; move the empty into the gap where the two meet"))))))
+                                 (:name b) ", more than half the thinnest side of "
+                                 (str/join " and of " (for [{:keys [name]} outside]
+                                                        (str name " (" (fmt (allowed name)) ")")))
+                                 ": it lies outside the two it joins;"
+                                 " move the empty into the gap where the two meet"))))))
 
 (defn duplicate-doubts
   "A doubt for each pair of segments that more than one joint joins,
@@ -972,16 +1051,6 @@
 
 (def ^:private record-key "cortex.body")
 
-(defn- label [^Node creature] (str "creature " (pr-str (.getName creature))))
-
-(defn- in-creature
-  "Run `f`; an ex-info it throws comes out prefixed with the creature."
-  [^Node creature f]
-  (try (f)
-       (catch clojure.lang.ExceptionInfo e
-         (throw (ex-info (str (label creature) ", " (ex-message e))
-                         (assoc (ex-data e) :creature (.getName creature)) e)))))
-
 (defn- plan-joint
   "What joint empty `marker` will join, measured."
   [index tol ^Spatial marker]
@@ -1020,7 +1089,8 @@
   describes. Call after `physical!`. `opts` (see `default-options`):
   :strict? (default true) makes any doubt about a joint an error listing
   every doubt; false builds the joints anyway and keeps the doubts as
-  warnings; :tolerance overrides the creature's. Returns the creature."
+  warnings; :tolerance overrides the creature's ambiguity window.
+  Returns the creature."
   ([creature] (joints! creature {}))
   ([^Node creature opts]
    (let [{:keys [strict?] :as opts} (merge default-options opts)]
@@ -1103,7 +1173,8 @@
   [{:name :mass :hull-points :hull-volume}], :joints [{:name :type :class
   :segments [first second] :pivot [x y z] (Blender's world axes)
   :distances {segment distance} :limits {...}}], :warnings [{:kind
-  :message ...}], :tolerance}, and for a creature with eyes :eyes
+  :message ...}], :tolerance (the ambiguity window the doubts used)},
+  and for a creature with eyes :eyes
   [{:name :kind :segment :distance :resolution :fov ...}] (see
   cortex.vision/eyes!)."
   [^Node creature]

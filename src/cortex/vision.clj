@@ -177,11 +177,12 @@
        {:width (- (double right) (double left)) :height (- (double top) (double bottom))}
        {:x (angle left right) :y (angle bottom top)}))))
 
-(defn- fmt [x] (format "%.3f" (double x)))
+(def ^:private fmt body/fmt-length)
 
 (defn- nearest!
-  "The segment that carries eye `marker`, measured; an ex-info when
-  none is near enough or two are about equally near."
+  "The segment that carries eye `marker`, measured; an ex-info when two
+  are about equally near (within `tolerance`), or the nearest is
+  farther than its own longest side."
   [index tolerance ^Spatial marker]
   (let [eye-name (.getName marker)
         measured (try (body/nearest-segments index marker tolerance 1 "eye")
@@ -189,6 +190,7 @@
                         (bad-eye eye-name "no segment is near it; place it on the segment that carries it"
                                  {:kind :far-eye :found (:found (ex-data e))})))
         [a b] measured
+        longest (double (peek (body/segment-sides (:geom a))))
         distances (into {} (map (juxt :name :distance)) measured)]
     (when b
       (bad-eye eye-name (str "it is about equally near " (:name a) " (" (fmt (:distance a))
@@ -196,10 +198,10 @@
                              (fmt tolerance) "), so which segment carries it cannot be told;"
                              " move it closer to the one it belongs to")
                {:kind :ambiguous-eye :segments (mapv :name measured) :distances distances}))
-    (when (> (double (:distance a)) (double tolerance))
+    (when (> (double (:distance a)) longest)
       (bad-eye eye-name (str "its nearest segment, " (:name a) ", is " (fmt (:distance a))
-                             " away, more than the tolerance " (fmt tolerance)
-                             "; move it onto the segment that carries it")
+                             " away, more than that segment's longest side (" (fmt longest)
+                             "); move it onto the segment that carries it")
                {:kind :far-eye :segments [(:name a)] :distances distances}))
     a))
 

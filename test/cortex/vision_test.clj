@@ -230,7 +230,7 @@
            ["a mesh" [(doto (Node. "e") (.setLocalTranslation 0 0 0.55) (.setUserData "blender-type" "MESH"))]
             #"eye \"e\": a MESH object cannot be an eye"]
            ["far from everything" [(eye-marker "e" (Vector3f. 0 0 3) Vector3f/UNIT_Z "{}")]
-            #"eye \"e\": its nearest segment, head, is 2.500 away, more than the tolerance 0.100"]
+            #"eye \"e\": its nearest segment, head, is 2.500 away, more than that segment's longest side \(1.000\)"]
            ["between two" [(eye-marker "e" (Vector3f. 0 0 -0.8) Vector3f/UNIT_Z "{}")]
             #"eye \"e\": it is about equally near head \(0.300\) and tail \(0.300"]
            ["twice" [(front-eye) (front-eye)] #"eyes share the names \[\"front-eye\"\]"]
