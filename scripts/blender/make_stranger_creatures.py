@@ -109,6 +109,15 @@ def add_empty(name, kind, size, location=(0, 0, 0), rotation=(0, 0, 0), parent=N
         obj.parent = parent
     return obj
 
+def add_joints(joints, root_size, size):
+    """The `joints` empty (display size root_size) and under it one
+    empty per joint, displayed at `size`, with its `joint` property."""
+    root = add_empty("joints", "PLAIN_AXES", root_size)
+    for j in joints:
+        e = add_empty(j["name"], "ARROWS", size, j["position"], j["rotation"], root)
+        e["joint"] = j["spec"]
+
+
 
 def frame_of(euler):
     return mh.euler_matrix(list(euler))
@@ -236,10 +245,7 @@ def build_hand(s):
         obj["mass"] = float(g["mass"])
         tip = g["name"].endswith("-3") or g["name"] == "thumb-2"
         obj.data.materials.append(nail if tip else skin)
-    root = add_empty("joints", "PLAIN_AXES", 0.3 * s)
-    for j in joints:
-        e = add_empty(j["name"], "ARROWS", 0.08 * s, j["position"], j["rotation"], root)
-        e["joint"] = j["spec"]
+    add_joints(joints, 0.3 * s, 0.08 * s)
     update()
 
 
@@ -390,10 +396,7 @@ def build_humanoid(s):
         bpy.context.scene.collection.objects.link(obj)
         obj.location = origin
         obj["mass"] = float(g["mass"])
-    root = add_empty("joints", "PLAIN_AXES", 0.2 * s)
-    for j in joints:
-        e = add_empty(j["name"], "ARROWS", 0.05 * s, j["position"], j["rotation"], root)
-        e["joint"] = j["spec"]
+    add_joints(joints, 0.2 * s, 0.05 * s)
     update()
 
 
@@ -466,10 +469,7 @@ def build_worm_eye(s):
         obj.data.transform(Matrix.Scale(s, 4))
         obj["mass"] = float(g["mass"])
         obj.data.materials.append(head if g["name"] == "head" else body)
-    root = add_empty("joints", "PLAIN_AXES", 0.3 * s)
-    for j in joints:
-        e = add_empty(j["name"], "ARROWS", 0.1 * s, j["position"], j["rotation"], root)
-        e["joint"] = j["spec"]
+    add_joints(joints, 0.3 * s, 0.1 * s)
     eye_root = add_empty("eyes", "PLAIN_AXES", 0.2 * s)
     for e in eyes:
         bpy.ops.object.camera_add(location=e["position"], rotation=e["rotation"])
