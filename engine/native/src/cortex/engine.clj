@@ -290,21 +290,33 @@
       0.0
       (let [c (mapv #(/ (double %) n) (reduce #(mapv + %1 %2) ps))
             size (reduce max 1e-12 (map #(Math/sqrt (dot (v- % c) (v- % c))) ps))
-            eps (* 1e-6 size)
-            faces (distinct
-                   (for [i (range n) j (range (inc i) n) k (range (inc j) n)
+            eps (* 1e-5 size)
+            ;; every plane through three vertices with all on one side,
+            ;; as its outward unit normal, its height above the centroid
+            ;; and the vertices on it
+            planes (for [i (range n) j (range (inc i) n) k (range (inc j) n)
                          :let [a (ps i) nrm (cross (v- (ps j) a) (v- (ps k) a))
                                len (Math/sqrt (dot nrm nrm))]
                          :when (> len (* eps size))
-                         :let [sides (mapv #(/ (dot nrm (v- % a)) len) ps)]
+                         :let [unit (mapv #(/ (double %) len) nrm)
+                               sides (mapv #(dot unit (v- % a)) ps)]
                          :when (or (every? #(<= (double %) eps) sides)
-                                   (every? #(>= (double %) (- eps)) sides))]
-                     [(set (filter #(< (Math/abs (double (sides %))) eps) (range n))) nrm a]))
-            faces (vals (into {} (map (fn [[on nrm a]] [on [on nrm a]]) faces)))]
-        (reduce + (for [[on nrm a] faces
-                        :let [len (Math/sqrt (dot nrm nrm))
-                              height (Math/abs (/ (dot nrm (v- a c)) len))]]
-                    (/ (* (Math/abs (polygon-area (mapv ps on) nrm)) height) 3.0)))))))
+                                   (every? #(>= (double %) (- eps)) sides))
+                         :let [h (dot unit (v- a c))
+                               [unit h] (if (neg? h) [(mapv - unit) (- h)] [unit h])]]
+                     {:unit unit :height h
+                      :on (set (filter #(< (Math/abs (double (sides %))) eps) (range n)))})
+            ;; one face per outward direction: planes whose normals agree
+            ;; within a thousandth of a radian are one face
+            faces (reduce (fn [faces {:keys [unit on] :as plane}]
+                            (if-let [i (first (keep-indexed
+                                               #(when (> (dot unit (:unit %2)) (- 1.0 5e-7)) %1)
+                                               faces))]
+                              (update-in faces [i :on] into on)
+                              (conj faces plane)))
+                          [] planes)]
+        (reduce + (for [{:keys [unit height on]} faces]
+                    (/ (* (Math/abs (polygon-area (mapv ps on) unit)) (double height)) 3.0)))))))
 
 (defn hull-margin
   "The collision margin cortex gives hull shapes: 0.001, as near
