@@ -226,8 +226,23 @@
     (when (instance? ConvexHullShape s)
       (mapv triple (.getPoints ^ConvexHullShape s)))))
 
-(defn hull-volume
-  "The volume of the convex hull of `points` ([[x y z] ...])."
+(defn- flat?
+  "Whether `points` ([[x y z] ...], at least one) enclose no volume: all
+  within a millionth of their size of one plane, or of one line."
+  [points]
+  (let [vs (mapv (fn [[x y z]] (javax.vecmath.Vector3d. x y z)) points)
+        ^javax.vecmath.Vector3d p0 (first vs)
+        minus (fn [^javax.vecmath.Vector3d a] (doto (javax.vecmath.Vector3d.) (.sub a p0)))
+        ^javax.vecmath.Vector3d e1 (minus (apply max-key #(.length ^javax.vecmath.Vector3d (minus %)) vs))
+        size (.length e1)
+        across (fn [p] (doto (javax.vecmath.Vector3d.) (.cross e1 (minus p))))
+        ^javax.vecmath.Vector3d n (across (apply max-key #(.length ^javax.vecmath.Vector3d (across %)) vs))]
+    (or (<= (.length n) (* 1e-6 size size))
+        (do (.normalize n)
+            (every? #(<= (Math/abs (.dot n (minus %))) (* 1e-6 size)) vs)))))
+
+(defn- hull-volume-of
+  "The volume of the convex hull of `points`, by jBullet's HullLibrary."
   ^double [points]
   (let [ps (doto (ObjectArrayList.)
              (.addAll ^java.util.Collection
@@ -249,6 +264,15 @@
                            (* ay (- (* bz cx) (* bx cz)))
                            (* az (- (* bx cy) (* by cx))))
                         6.0)))))))))
+
+(defn hull-volume
+  "The volume of the convex hull of `points` ([[x y z] ...]); 0 when they
+  enclose none (jBullet's HullLibrary gives a flat set a volume of its
+  own making: 0.4 for a unit triangle)."
+  ^double [points]
+  (if (or (< (count (distinct points)) 4) (flat? points))
+    0.0
+    (hull-volume-of points)))
 
 (defn hull-margin
   "The collision margin cortex gives hull shapes: jme3-jbullet's own, 0."
