@@ -77,9 +77,10 @@
     (is (re-find #"1 doubt about its joints" (build-error "misplaced-joint.blend")))))
 
 (defn- doubts-of
-  "[kind joint] of every doubt that stops fixture `name` from building."
-  [name]
-  (try (body/body! (load-fixture name)) []
+  "[kind joint] of every doubt that stops fixture `name` from building
+  (with body!'s `opts`)."
+  [name & [opts]]
+  (try (body/body! (load-fixture name) (or opts {})) []
        (catch clojure.lang.ExceptionInfo e
          (mapv (juxt :kind #(or (:joint %) (:joints %))) (:doubts (ex-data e))))))
 
@@ -94,6 +95,15 @@
          (doubts-of "ambiguous-joint.blend")))
   (is (= [[:duplicate-joint ["knee-front-r" "knee-front-r-2"]]] (doubts-of "duplicate-joint.blend")))
   (is (= [[:misnamed-joints nil]] (doubts-of "misnamed-joints.blend"))))
+
+(deftest the-tolerance-is-the-ambiguity-window
+  (testing "narrower than the gap between the second and third nearest: the pair is clear"
+    (is (= [[:far-joint "tail-joint-2"]] (doubts-of "ambiguous-joint.blend" {:tolerance 0.005}))))
+  (testing "as wide as a segment: neighbours become doubtful, and the report says the window"
+    (let [{:keys [tolerance warnings]} (body/report (body/body! (load-fixture "quadruped.blend")
+                                                                {:tolerance 0.5 :strict? false}))]
+      (is (== 0.5 tolerance))
+      (is (seq (filter #(= :ambiguous-joint (:kind %)) warnings))))))
 
 (deftest relaxed-builds-keep-the-doubts-as-warnings
   (let [c (body/body! (load-fixture "misplaced-joint.blend") {:strict? false})
