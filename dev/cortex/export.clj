@@ -10,13 +10,13 @@
             [clojure.string :as str]
             [cortex.compare :as compare]
             [cortex.engine :as engine]
-            [cortex.physics-trust-test :as trust]
+            [cortex.drops :as drops]
             [cortex.util :as util]))
 
 (set! *warn-on-reflection* true)
 
 (defn- speeds-csv
-  "`series` (see cortex.physics-trust-test/speeds) as CSV text: a
+  "`series` (see cortex.drops/speeds) as CSV text: a
   comment naming the engine and floor, a header, a row a step."
   [series friction]
   (let [names (keys (second (first series)))]
@@ -34,8 +34,8 @@
   [& [a b c d]]
   (let [[out text] (if (= "speeds" a)
                      (let [friction (Double/parseDouble (or d "0.5"))]
-                       [c (speeds-csv (trust/speeds (util/load-blender-model b) friction 180) friction)])
-                     [b (compare/json (trust/export (util/load-blender-model a)))])]
+                       [c (speeds-csv (drops/speeds (util/load-blender-model b) friction 180) friction)])
+                     [b (compare/json (drops/export (util/load-blender-model a)))])]
     (io/make-parents (io/file out))
     (spit out text)
     (println "wrote" out)

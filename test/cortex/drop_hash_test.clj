@@ -1,5 +1,4 @@
 ;; Generated from org/physics-trust.org by lein tangle: edit the chapter, not this file.
-;; Generated from org/physics-trust.org by lein tangle: edit the chapter, not this file.
 (ns cortex.drop-hash-test
   (:require [clojure.edn :as edn]
             [clojure.java.io :as io]
@@ -7,7 +6,7 @@
             [clojure.test :refer [deftest is]]
             [cortex.engine :as engine]
             [cortex.physics-tab :as physics-tab]
-            [cortex.physics-trust-test :as trust]
+            [cortex.drops :as drops]
             [cortex.sim :as sim]
             [cortex.util :as util])
   (:import (com.jme3.scene Node)
@@ -37,7 +36,7 @@
   (let [[how path] (creatures name)
         s (case how
             :markers (let [^Node c (util/load-blender-model path)]
-                       (trust/place! c)
+                       (drops/place! c)
                        (sim/simulation c {:floor {:height 0 :friction 1.0}
                                           :observe #{:segments}}))
             :physics-tab (sim/simulation (physics-tab/physics-body! (physics-tab/load-creature path))

@@ -25,3 +25,22 @@
     (is (contains? loaded "cortex.world"))
     (is (not-any? #(str/starts-with? % "cortex.blender") loaded)
         (str "the reader was loaded: " (sort loaded)))))
+
+(defn- required
+  "The namespaces the ns form at the head of `file` requires."
+  [^java.io.File file]
+  (let [[_ _ & clauses] (binding [*read-eval* false]
+                          (with-open [r (java.io.PushbackReader. (clojure.java.io/reader file))]
+                            (read r)))]
+    (for [[k & specs] clauses :when (= :require k)
+          spec specs]
+      (if (sequential? spec) (first spec) spec))))
+
+(deftest no-tool-requires-a-test
+  (let [tools (for [dir ["dev" "engine/jbullet/dev" "engine/native/dev"]
+                    ^java.io.File f (file-seq (java.io.File. ^String dir))
+                    :when (str/ends-with? (.getName f) ".clj")]
+                f)]
+    (is (< 10 (count tools)) "the tools are found")
+    (doseq [f tools]
+      (is (not-any? #(str/ends-with? (name %) "-test") (required f)) (str f)))))

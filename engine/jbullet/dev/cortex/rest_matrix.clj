@@ -18,7 +18,7 @@
   (:require [cortex.body :as body]
             [cortex.sim :as sim]
             [cortex.util :as util]
-            [cortex.physics-trust-test :refer [extent]]
+            [cortex.drops :refer [extent]]
             [cortex.trust-matrix :as tm]
             [clojure.string :as str])
   (:import (com.jme3.scene Node)

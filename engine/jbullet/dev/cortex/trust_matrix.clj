@@ -1,6 +1,6 @@
 ;; Generated from org/physics-trust.org by lein tangle: edit the chapter, not this file.
 (ns cortex.trust-matrix
-  "The physics-trust drop (see cortex.physics-trust-test/drop!) under
+  "The physics-trust drop (see cortex.drops/drop!) under
   solver and joint settings, alternating in one JVM, as a table: worst
   overshoot (times its allowance), worst joint, rest, and the humanoid's
   steps per CPU second (sleeping off) relative to the first setting.
@@ -11,7 +11,7 @@
   rows); FRICTIONS=0.5,1.0 CREATURES=hand,humanoid NOSPEED=1 narrow the
   run."
   (:require [cortex.body :as body]
-            [cortex.physics-trust-test :refer [extent overshoot]]
+            [cortex.drops :refer [extent overshoot]]
             [cortex.sim :as sim]
             [cortex.util :as util]
             [clojure.string :as str])

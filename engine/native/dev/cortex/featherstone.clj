@@ -9,7 +9,7 @@
   cortex.featherstone)."
   (:require [clojure.string :as str]
             [cortex.body :as body]
-            [cortex.physics-trust-test :as pt]
+            [cortex.drops :as drops]
             [cortex.util :as util])
   (:import (com.jme3.bullet MultiBody MultiBodyLink MultiBodySpace PhysicsSpace$BroadphaseType)
            (com.jme3.bullet.collision.shapes BoxCollisionShape CollisionShape)
@@ -28,7 +28,7 @@
   is 1 m above the floor at 0, then given its body (sleeping off, as
   cortex.compare builds it): [creature height]."
   [^Node creature]
-  (let [[lo hi] (pt/extent creature)]
+  (let [[lo hi] (drops/extent creature)]
     (.move creature 0 (float (- 1.0 lo)) 0)
     [(body/body! creature {:sleeping-thresholds [0 0]}) (- hi lo)]))
 
