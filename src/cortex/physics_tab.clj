@@ -21,7 +21,8 @@
             [cortex.body :as body]
             [cortex.engine :as engine]
             [cortex.sense :as sense]
-            [cortex.util :as util])
+            [cortex.util :as util]
+            [cortex.world :as world])
   (:import (com.jme3.bullet.collision.shapes BoxCollisionShape CapsuleCollisionShape
                                              CollisionShape ConeCollisionShape
                                              CylinderCollisionShape GImpactCollisionShape
@@ -615,17 +616,11 @@
       (.mult (util/blender-to-jme (util/vec3 g)) (float w))
       (Vector3f.))))
 
-(defn substep-length
-  "The largest float a such that Java's float arithmetic gives
-  (int) ((float) x / a) >= k, for x = t/60 as a float: Bullet's fixed
-  step loop then runs exactly k substeps of a in a step of x (or more,
-  clamped to k)."
-  [t k]
-  (let [x (float (* (float (/ 1.0 60.0)) (float t)))]
-    (loop [a (float (/ x (float k)))]
-      (if (>= (int (float (/ (double x) (double a)))) (long k))
-        a
-        (recur (Math/nextDown a))))))
+(def ^{:arglists '([t k])} substep-length
+  "cortex.world/substep-length, which lives below the reader so that the
+  step loop needs none of it: the length of a substep that makes
+  Bullet's fixed-step loop run exactly k in a step of t/60."
+  world/substep-length)
 
 (defn simulation-settings
   "How Blender simulates the world of settings `world` (see
@@ -656,8 +651,8 @@
 
 (def simulation-key
   "The user data under which `physics-body!` leaves the creature's
-  `simulation-settings`."
-  "blender-simulation")
+  `simulation-settings` (cortex.world/simulation-key)."
+  world/simulation-key)
 
 (defn- blender-joint-order
   "The joints of `joints` (reports of `constraint!`) in the order of

@@ -14,7 +14,6 @@
             [cortex.body :as body]
             [cortex.engine :as engine]
             [cortex.muscle :as muscle]
-            [cortex.physics-tab :as physics-tab]
             [cortex.projection :as projection]
             [cortex.proprioception :as p]
             [cortex.touch :as touch]
@@ -163,7 +162,7 @@
   cortex.physics-tab/simulation-settings), nil for a creature without
   one."
   [^Node creature]
-  (.getUserData creature ^String physics-tab/simulation-key))
+  (.getUserData creature ^String world/simulation-key))
 
 (defn- set-solver!
   "Override `space`'s solver iterations and substeps with those `solver`
@@ -173,7 +172,7 @@
   (when-let [n (:iterations solver)]
     (.setSolverNumIterations space (int n)))
   (when-let [k (:substeps solver)]
-    (.setAccuracy space (float (physics-tab/substep-length time-scale k)))
+    (.setAccuracy space (float (world/substep-length time-scale k)))
     (.setMaxSubSteps space (int k)))
   (when (contains? solver :projection)
     (projection/enable! space (:projection solver))))

@@ -82,6 +82,23 @@
   ^PhysicsSpace [world]
   (.getPhysicsSpace (physics world)))
 
+(def simulation-key
+  "The user data under which a creature carries how its world should
+  step (cortex.physics-tab/simulation-settings)."
+  "blender-simulation")
+
+(defn substep-length
+  "The largest float a such that Java's float arithmetic gives
+  (int) ((float) x / a) >= k, for x = t/60 as a float: Bullet's fixed
+  step loop then runs exactly k substeps of a in a step of x (or more,
+  clamped to k)."
+  [t k]
+  (let [x (float (* (float (/ 1.0 60.0)) (float t)))]
+    (loop [a (float (/ x (float k)))]
+      (if (>= (int (float (/ (double x) (double a)))) (long k))
+        a
+        (recur (Math/nextDown a))))))
+
 (defn world-settings
   "jME settings for a cortex world: a 800x600 window titled cortex, no
   settings dialog, no audio."

@@ -26,6 +26,14 @@
     (is (not-any? #(str/starts-with? % "cortex.blender") loaded)
         (str "the reader was loaded: " (sort loaded)))))
 
+(deftest the-step-loop-loads-neither-the-reader-nor-the-renderer
+  (let [loaded (set (loaded-after '[cortex.sim]))]
+    (is (contains? loaded "cortex.sim"))
+    (is (not-any? #(or (str/starts-with? % "cortex.blender") (= % "cortex.render")
+                       (= % "cortex.sight") (= % "cortex.physics-tab"))
+                  loaded)
+        (str "requiring cortex.sim loaded " (sort loaded)))))
+
 (defn- required
   "The namespaces the ns form at the head of `file` requires."
   [^java.io.File file]
