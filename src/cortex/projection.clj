@@ -219,8 +219,16 @@
   "Put back every joint of `plan` (see `plan`) that is past its
   trigger, from the root outwards, but those whose bodies both sleep.
   Returns how many were put back."
-  [plan]
-  (reduce (fn [^long n entry] (if (and (awake? entry) (project-joint! entry)) (inc n) n)) 0 plan))
+  ^long [plan]
+  ;; after every substep: a loop over the vector, which boxes and
+  ;; allocates nothing (a reduce made a closure and boxed the count)
+  (let [^clojure.lang.IPersistentVector plan plan
+        size (count plan)]
+    (loop [i 0 n 0]
+      (if (< i size)
+        (let [entry (.nth plan i)]
+          (recur (inc i) (if (and (awake? entry) (project-joint! entry)) (inc n) n)))
+        n))))
 
 (def ^:private ^Map spaces
   "Each space `install!` was given (weakly held) -> a volatile
@@ -233,7 +241,13 @@
   [^PhysicsSpace space state]
   (let [joints (.getJointList space)
         {:keys [^Map seen entries]} @state]
-    (if (and seen (== (count joints) (.size seen)) (every? #(.containsKey seen %) joints))
+    (if (and seen (== (count joints) (.size seen))
+             ;; every substep: an iterator, not a closure and a seq
+             (let [it (.iterator ^java.util.Collection joints)]
+               (loop []
+                 (cond (not (.hasNext it)) true
+                       (.containsKey seen (.next it)) (recur)
+                       :else false))))
       entries
       (let [seen (IdentityHashMap.)
             p (plan joints)]

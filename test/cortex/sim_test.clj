@@ -267,3 +267,25 @@
         (is (> (.length (util/vec3 velocity)) 1.0))
         (is (< (.distance (util/vec3 velocity) (util/vec3 moved))
                (* 0.02 (.length (util/vec3 moved)))))))))
+
+(defn- bytes-per-step
+  "What one `step!` of the creature at `path`, observing nothing,
+  allocates on this thread, in bytes, after a warm-up."
+  [path]
+  (let [^com.sun.management.ThreadMXBean mx (java.lang.management.ManagementFactory/getThreadMXBean)
+        s (sim/simulation (util/load-blender-model path) {:floor {:height 0 :friction 1.0}
+                                                          :observe #{}})
+        thread (.getId (Thread/currentThread))]
+    (try
+      (dotimes [_ 2000] (sim/step! s))
+      (let [before (.getThreadAllocatedBytes mx thread)]
+        (dotimes [_ 1000] (sim/step! s))
+        (/ (- (.getThreadAllocatedBytes mx thread) before) 1000.0))
+      (finally (sim/destroy! s)))))
+
+(deftest a-step-allocates-little
+  ;; native Bullet only: jBullet's own step allocates (see above)
+  (when (= :native engine/name)
+    (doseq [path ["test/fixtures/humanoid/humanoid.blend" "test/fixtures/designer/quadruped.blend"]]
+      (let [b (bytes-per-step path)]
+        (is (< b 1024.0) (str path ": " b " bytes a step"))))))

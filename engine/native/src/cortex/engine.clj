@@ -398,8 +398,8 @@
   "Give the hinge `joint` the limits [low high] about its zero `zero`
   (native Bullet keeps a limit as a centre and a half range, so one
   that crosses a half turn is fine)."
-  [^com.jme3.bullet.joints.HingeJoint joint ^double zero low high]
-  (.setLimit joint (float (+ zero (double low))) (float (+ zero (double high)))
+  [^com.jme3.bullet.joints.HingeJoint joint ^double zero ^double low ^double high]
+  (.setLimit joint (float (+ zero low)) (float (+ zero high))
              (float 0.9) (float 1.0) (float 0.0)))
 
 (defn limit-hinge!
@@ -415,25 +415,32 @@
 
 (defn- speculate!
   "Before a step: stop each limited hinge of `space` that would pass a
-  limit in it, and give back their limits to the others."
+  limit in it, and give back their limits to the others. Runs every
+  substep, so it boxes nothing: the limits are two primitive doubles,
+  not a pair."
   [^PhysicsSpace space]
-  (doseq [j (.getJointList space)
-          :let [^doubles state (.get limited-hinges j)]
-          :when state]
-    (let [^com.jme3.bullet.joints.HingeJoint h j
-          lo (aget state 0) hi (aget state 1) zero (aget state 4)
-          angle (wrap (- (double (.getHingeAngle h)) zero))
-          next-angle (if (pos? (aget state 3)) (- (* 2.0 angle) (aget state 2)) angle)
-          margin 1e-4
-          [l u] (cond (and (<= angle hi) (> next-angle hi)) [lo (max lo (- angle margin))]
-                      (and (>= angle lo) (< next-angle lo)) [(min hi (+ angle margin)) hi]
-                      :else [lo hi])]
-      (when (or (not= (double l) (aget state 5)) (not= (double u) (aget state 6)))
-        (set-limits! h zero l u)
-        (aset state 5 (double l))
-        (aset state 6 (double u)))
-      (aset state 2 angle)
-      (aset state 3 1.0))))
+  (let [it (.iterator (.getJointList space))]
+    (while (.hasNext it)
+      (let [j (.next it)
+            ^doubles state (.get limited-hinges j)]
+        (when state
+          (let [^com.jme3.bullet.joints.HingeJoint h j
+                lo (aget state 0) hi (aget state 1) zero (aget state 4)
+                angle (double (wrap (- (double (.getHingeAngle h)) zero)))
+                next-angle (if (pos? (aget state 3)) (- (* 2.0 angle) (aget state 2)) angle)
+                margin 1e-4
+                ;; about to pass the upper limit: stop just short of it;
+                ;; else the lower; else the limits as they are
+                up? (and (<= angle hi) (> next-angle hi))
+                down? (and (not up?) (>= angle lo) (< next-angle lo))
+                l (if down? (min hi (+ angle margin)) lo)
+                u (if up? (max lo (- angle margin)) hi)]
+            (when (or (not (== l (aget state 5))) (not (== u (aget state 6))))
+              (set-limits! h zero l u)
+              (aset state 5 l)
+              (aset state 6 u))
+            (aset state 2 angle)
+            (aset state 3 1.0)))))))
 
 (def six-dof-class
   "The class of the joint `six-dof-joint` makes."
