@@ -206,18 +206,66 @@
   (rotate (q-conj (frame-now sensor))
           (mapv - (angular-velocity rb-b) (angular-velocity rb-a))))
 
+(defmacro ^:private q*-part
+  "Part `i` (0 to 3: x, y, z, w) of the Hamilton product (`q*`) of the
+  quaternions whose parts are the eight primitive expressions given,
+  computed as `q*` computes it, to the bit."
+  [i px py pz pw qx qy qz qw]
+  (case (long i)
+    0 `(+ (* ~pw ~qx) (* ~px ~qw) (* ~py ~qz) (- (* ~pz ~qy)))
+    1 `(+ (* ~pw ~qy) (- (* ~px ~qz)) (* ~py ~qw) (* ~pz ~qx))
+    2 `(+ (* ~pw ~qz) (* ~px ~qy) (- (* ~py ~qx)) (* ~pz ~qw))
+    3 `(- (* ~pw ~qw) (* ~px ~qx) (* ~py ~qy) (* ~pz ~qz))))
+
 (defn joint-state
   "The state of the joint `sensor` reads, now (see the namespace doc)."
   [{:keys [type axis rb-a rb-b frame-a frame-b]}]
-  (let [;; each body's orientation is read once: the same arithmetic as
-        ;; relative-rotation and relative-angular-velocity, shared
-        back (q-conj (q* (orientation rb-a) frame-a))
-        q (q* back (q* (orientation rb-b) frame-b))
-        w (rotate back (mapv - (angular-velocity rb-b) (angular-velocity rb-a)))]
+  ;; each body's orientation is read once: the arithmetic of
+  ;; relative-rotation and relative-angular-velocity, shared, on
+  ;; primitive doubles (the same operations in the same order as q*,
+  ;; q-conj and rotate: the same numbers, without a vector per step)
+  (let [[oax oay oaz oaw] (orientation rb-a)
+        [obx oby obz obw] (orientation rb-b)
+        [fax fay faz faw] frame-a
+        [fbx fby fbz fbw] frame-b
+        oax (double oax) oay (double oay) oaz (double oaz) oaw (double oaw)
+        obx (double obx) oby (double oby) obz (double obz) obw (double obw)
+        fax (double fax) fay (double fay) faz (double faz) faw (double faw)
+        fbx (double fbx) fby (double fby) fbz (double fbz) fbw (double fbw)
+        ;; back = (q-conj (q* oa fa))
+        bx (- (q*-part 0 oax oay oaz oaw fax fay faz faw))
+        by (- (q*-part 1 oax oay oaz oaw fax fay faz faw))
+        bz (- (q*-part 2 oax oay oaz oaw fax fay faz faw))
+        bw (q*-part 3 oax oay oaz oaw fax fay faz faw)
+        ;; q = (q* back (q* ob fb))
+        cx (q*-part 0 obx oby obz obw fbx fby fbz fbw)
+        cy (q*-part 1 obx oby obz obw fbx fby fbz fbw)
+        cz (q*-part 2 obx oby obz obw fbx fby fbz fbw)
+        cw (q*-part 3 obx oby obz obw fbx fby fbz fbw)
+        x (q*-part 0 bx by bz bw cx cy cz cw)
+        y (q*-part 1 bx by bz bw cx cy cz cw)
+        z (q*-part 2 bx by bz bw cx cy cz cw)
+        w (q*-part 3 bx by bz bw cx cy cz cw)
+        ;; the relative angular velocity, rotated by back (as `rotate`)
+        [wax way waz] (angular-velocity rb-a)
+        [wbx wby wbz] (angular-velocity rb-b)
+        vx (- (double wbx) (double wax)) vy (- (double wby) (double way))
+        vz (- (double wbz) (double waz))
+        tx (* 2.0 (- (* by vz) (* bz vy)))
+        ty (* 2.0 (- (* bz vx) (* bx vz)))
+        tz (* 2.0 (- (* bx vy) (* by vx)))
+        rx (+ vx (* bw tx) (- (* by tz) (* bz ty)))
+        ry (+ vy (* bw ty) (- (* bz tx) (* bx tz)))
+        rz (+ vz (* bw tz) (- (* bx ty) (* by tx)))]
     (if (= type :hinge)
-      {:type :hinge :angle (twist-angle q axis) :velocity (dot w axis)}
-      (let [{:keys [swing twist]} (swing-twist (jme->blender q))]
-        {:type type :swing swing :twist twist :angular-velocity (jme->blender w)}))))
+      (let [[ux uy uz] axis
+            ux (double ux) uy (double uy) uz (double uz)]
+        ;; as twist-angle and dot
+        {:type :hinge
+         :angle (wrap-angle (* 2.0 (Math/atan2 (+ (* x ux) (* y uy) (* z uz)) w)))
+         :velocity (+ (* rx ux) (* ry uy) (* rz uz))})
+      (let [{:keys [swing twist]} (swing-twist (jme->blender [x y z w]))]
+        {:type type :swing swing :twist twist :angular-velocity (jme->blender [rx ry rz])}))))
 
 (defn read-joints
   "The state of the joint each of `sensors` reads, by joint name."
