@@ -123,6 +123,23 @@
    :gap-excess (mapv #(reduce max 0.0 (map (fn [[o t]] (- o t)) (vals (:gaps %)))) (:per-time r))
    :broken (:broken r)})
 
+(defn gap-table
+  "Each joint's gap in cortex and in Blender at each time of `r` (a
+  `run-case`): {constraint [[ours theirs] ...]}, the measurement behind
+  the joint figures of this chapter. With `folder` another folder of
+  NAME.blend and NAME_sim.json files can be measured: (gap-table
+  (binding-folder \"/tmp/x/\" #(run-case \"name\")))."
+  [r]
+  (into (sorted-map) (for [cn (keys (:gaps (first (:per-time r))))]
+                       [cn (mapv #(get (:gaps %) cn) (:per-time r))])))
+
+(defn binding-folder
+  "Call `f` with the fixtures read from `dir` (a folder of NAME.blend and
+  NAME_sim.json, as simulate_physics.py --times writes them) instead of
+  test/fixtures/physics-sim/."
+  [dir f]
+  (with-redefs [folder dir] (f)))
+
 (def ^:private case-run (memoize run-case))
 
 (defn- at-1s [r] (nth (:per-time r) 2))
