@@ -26,7 +26,8 @@ import javax.vecmath.Vector3f;
  * of the reference face and keeps the points below it (at most four:
  * the deepest, then each next the farthest from those kept); an edge
  * axis gives the closest points of the two edges. The boxes' full half
- * extents (with margin) are used, as Blender's.
+ * extents (with margin) are used, as Blender's, and the pair's manifold
+ * keeps its points within Bullet 2.8's relative breaking threshold.
  */
 public final class BoxBoxAlgorithm extends CollisionAlgorithm {
     private PersistentManifold manifold;
@@ -120,9 +121,21 @@ public final class BoxBoxAlgorithm extends CollisionAlgorithm {
         Transform tb = b.getWorldTransform(new Transform());
         double[] ha = vec(((BoxShape) a.getCollisionShape()).getHalfExtentsWithMargin(new Vector3f()));
         double[] hb = vec(((BoxShape) b.getCollisionShape()).getHalfExtentsWithMargin(new Vector3f()));
-        contacts(axes(ta), vec(ta.origin), ha, axes(tb), vec(tb.origin), hb, out);
-        if (ownManifold) {
-            out.refreshContactPoints();
+        float saved = com.bulletphysics.BulletGlobals.getContactBreakingThreshold();
+        // Bullet 2.8's manifolds keep points within a threshold relative to
+        // the smaller shape (CD_USE_RELATIVE_CONTACT_BREAKING_THRESHOLD, on
+        // by default): its bounding sphere's radius times the global 0.02.
+        // jBullet's global one is thread-local: it is set for this pair and
+        // restored.
+        com.bulletphysics.BulletGlobals.setContactBreakingThreshold(
+            saved * Math.min(a.getCollisionShape().getAngularMotionDisc(), b.getCollisionShape().getAngularMotionDisc()));
+        try {
+            contacts(axes(ta), vec(ta.origin), ha, axes(tb), vec(tb.origin), hb, out);
+            if (ownManifold) {
+                out.refreshContactPoints();
+            }
+        } finally {
+            com.bulletphysics.BulletGlobals.setContactBreakingThreshold(saved);
         }
     }
 

@@ -161,16 +161,19 @@
 
 (defn blender-solver-order!
   "Have `space` solve contacts as Blender's world does, as far as jBullet
-  goes: in a fixed order (jBullet's default shuffles its contacts every
-  step, SOLVER_RANDMIZE_ORDER; Blender's Bullet does not), keeping warm
-  starting; and two boxes meet through cortex.BoxBoxAlgorithm, all their
-  contact points at once, as through Blender's box-box algorithm, which
-  jBullet lacks (see the Physics tab chapter: a ragdoll's shin no longer
-  sinks through a ground plane). Joints are solved in the order they
-  were added, in both."
+  goes: two boxes meet through cortex.BoxBoxAlgorithm, all their contact
+  points at once, as through Blender's box-box algorithm, which jBullet
+  lacks (a ragdoll's shin no longer sinks through a ground plane); and
+  cortex.BlenderContactSolver solves the contacts as Bullet 2.8 does
+  (one friction row a point along its sliding, in a fixed order, warm
+  started; jBullet's own shuffles them every step and gives each point
+  two friction rows kept from step to step). Joints are solved as
+  jBullet solves them, in the order they were added. See the Physics
+  tab chapter for what each changed."
   [^PhysicsSpace space]
   (let [^DynamicsWorld w (.getDynamicsWorld space)]
     (cortex.BoxBoxAlgorithm/register ^com.bulletphysics.collision.dispatch.CollisionDispatcher (.getDispatcher w))
+    (.setConstraintSolver ^com.bulletphysics.dynamics.DiscreteDynamicsWorld w (cortex.BlenderContactSolver.))
     (set! (.solverMode (.getSolverInfo w))
           (int (bit-or SolverMode/SOLVER_USE_WARMSTARTING SolverMode/SOLVER_CACHE_FRIENDLY)))))
 
