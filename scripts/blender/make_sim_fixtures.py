@@ -14,6 +14,12 @@ ragdoll       ten boxes shaped like a figure lying just above the ground
               Blender's own Object > Rigid Body > Connect (GENERIC, pivot at
               the centre between the two), translation locked, each angle
               limited to [-0.4, 0.4]; collisions between joined bodies off.
+addon-ragdoll a ragdoll as the Rigid Body Bones add-on writes it (see
+              addon_ragdoll): ten bone-shaped boxes, GENERIC constraints at
+              the bones' heads with angular limits (some locked, the head's
+              locked away from the start pose), a zero-thickness ground
+              plane, and the add-on sample's world: 60 fps, 1 substep a
+              frame, 1 solver iteration.
 rig-chain     what a rigging add-on makes of an arm: five bone-shaped bodies
               (long thin boxes along each bone's Y, turned as the bones are,
               zig-zag), each joined to its parent at the bone's head by a
@@ -239,6 +245,134 @@ def kick():
     c.disable_collisions = True
 
 
+# The Rigid Body Bones add-on's ragdoll (see addon_ragdoll's docstring):
+# bone name: (parent, head, tail, hitbox width and depth, mass, angular
+# limits X, Y, Z as the file holds them, after the add-on's flip; None
+# for the root bone, which the add-on joins to its [Root] body with the
+# constraint its user left unlimited).
+ADDON_BONES = [
+    ("torso", None, (0.0, 0.0, 1.0), (0.0, 0.0, 1.6), (0.5, 0.3), 4.0, None),
+    ("head", "torso", (0.0, 0.0, 1.6), (0.0, 0.0, 1.95), (0.25, 0.25), 2.0,
+     [(-0.175, -0.175), (-0.436, 0.436), (-0.349, 0.349)]),
+    ("upper-arm-l", "torso", (0.28, 0.0, 1.55), (0.55, 0.0, 1.15), (0.12, 0.12), 1.0,
+     [(-1.047, 1.222), (-1.571, 1.571), (-0.175, 1.571)]),
+    ("forearm-l", "upper-arm-l", (0.55, 0.0, 1.15), (0.7, -0.05, 0.75), (0.1, 0.1), 1.0,
+     [(0.0, 0.0), (-1.571, 1.571), (0.0, 2.269)]),
+    ("upper-arm-r", "torso", (-0.28, 0.0, 1.55), (-0.55, 0.0, 1.15), (0.12, 0.12), 1.0,
+     [(-1.047, 1.222), (-1.571, 1.571), (-0.175, 1.571)]),
+    ("forearm-r", "upper-arm-r", (-0.55, 0.0, 1.15), (-0.7, -0.05, 0.75), (0.1, 0.1), 1.0,
+     [(0.0, 0.0), (-1.571, 1.571), (0.0, 2.269)]),
+    ("thigh-l", "torso", (0.13, 0.0, 1.0), (0.15, -0.02, 0.55), (0.16, 0.16), 2.0,
+     [(-1.222, 1.571), (-0.785, 0.785), (-0.524, 0.436)]),
+    ("shin-l", "thigh-l", (0.15, -0.02, 0.55), (0.16, 0.0, 0.1), (0.13, 0.13), 1.5,
+     [(-1.745, 0.262), (-0.175, 0.175), (0.0, 0.0)]),
+    ("thigh-r", "torso", (-0.13, 0.0, 1.0), (-0.15, -0.02, 0.55), (0.16, 0.16), 2.0,
+     [(-1.222, 1.571), (-0.785, 0.785), (-0.524, 0.436)]),
+    ("shin-r", "thigh-r", (-0.15, -0.02, 0.55), (-0.16, 0.0, 0.1), (0.13, 0.13), 1.5,
+     [(-1.745, 0.262), (-0.175, 0.175), (0.0, 0.0)]),
+]
+
+
+# the start pose: turned (Euler XYZ) and lifted
+ADDON_POSE = ((1.2, 0.1, 0.3), (0.0, 0.0, 0.6))
+
+
+def addon_ragdoll():
+    """A ragdoll as the Rigid Body Bones add-on (Pauan/blender-rigid-body-bones,
+    1.6) writes it into a file, made here with Blender's own operators and
+    settings (the add-on is not run).  What its source says it writes, and
+    is mirrored: per bone an ACTIVE body `NAME [Active]`, a box hitbox
+    along the bone (the bone's Y, centred on the bone: Offset Origin 0.5),
+    parented to a joint empty `NAME [Head]` at the bone's head, turned as
+    the bone; on that empty a GENERIC constraint (GENERIC_SPRING only when
+    a spring is on: none is here) from the parent bone's body (object1) to
+    the bone's (object2), Disable Collisions on, translation limited to
+    [0, 0] on X, Y and Z (its defaults), breaking off with its default
+    threshold 10, no solver-iteration override; the angular limits are
+    stored flipped (lower = -upper of the add-on's panel), and are given
+    here as the file holds them.  The root bone's constraint joins a
+    PASSIVE, Animated body `Armature [Root]` whose mesh has no vertices and
+    which is in no collision collection.  What it leaves as its user left
+    it, and is copied from its own Ragdoll.blend sample (20 bodies, 17
+    constraints): every angle limited, some angles locked (lower = upper),
+    one locked away from the start pose (the head's X at -0.175, as the
+    sample's neck), the root constraint unlimited (the ragdoll falls
+    free), a ground that is a plane (a mesh without thickness, BOX shape),
+    and the Rigid Body World at 60 fps, 1 substep per frame and 1 solver
+    iteration.  Not confirmed: the add-on's exact hitbox sizes and masses
+    (its defaults are 0.2 of the bone's length wide and mass 1; the
+    sample's user changed them, as here), and the bone roll (here the
+    shortest turn from Y to the bone).  The figure lies leaning back, its
+    lowest point 0.2 above the ground, and lands at about 0.35 s; the pose
+    was chosen so that Blender itself is well conditioned (lifted 1 mm
+    more, Blender's own bodies move 0.11% of the figure's size at 1 s and
+    0.25% at 4 s; the sample's stand-up fall from 2 units moves 2.1% and
+    5.2%), so that the comparison judges the engine, not chaos."""
+    from mathutils import Euler, Vector
+    sc = bpy.context.scene
+    sc.render.fps = 60
+    sc.frame_end = 300
+    w = sc.rigidbody_world
+    w.substeps_per_frame = 1
+    w.solver_iterations = 1
+    w.point_cache.frame_end = 300
+    me = mf.mesh_from("ground", [(-10, -10, 0), (10, -10, 0), (10, 10, 0), (-10, 10, 0)],
+                      [(0, 1, 2, 3)])
+    g = mf.new_object("ground", me)
+    activate(g)
+    bpy.ops.rigidbody.object_add(type='PASSIVE')
+    g.rigid_body.collision_shape = 'BOX'
+    root = mf.new_object("Armature [Root]", bpy.data.meshes.new("Armature [Root]"))
+    activate(root)
+    bpy.ops.rigidbody.object_add(type='PASSIVE')
+    root.rigid_body.kinematic = True
+    root.rigid_body.collision_collections[0] = False
+    root.rigid_body.collision_shape = 'BOX'
+    # the pose: lifted 2 units and leaning forward and sideways
+    lean = Euler(ADDON_POSE[0]).to_matrix()
+    lift = Vector(ADDON_POSE[1])
+
+    def place(p):
+        return lean @ Vector(p) + lift
+    bodies = {}
+    heads = {}
+    for name, parent, head, tail, (wd, dp), mass, limits in ADDON_BONES:
+        h, t = place(head), place(tail)
+        d = t - h
+        rot = Vector((0, 1, 0)).rotation_difference(d.normalized())
+        body = box(name + " [Active]", (wd / 2, d.length / 2, dp / 2), tuple((h + t) / 2),
+                   rotation=rot.to_euler(), mass=mass)
+        bodies[name] = body
+        e = mf.new_object(name + " [Head]", None, location=tuple(h))
+        e.rotation_mode = 'QUATERNION'
+        e.rotation_quaternion = rot
+        heads[name] = e
+        mf.update()
+        # the add-on parents each joint empty to its parent bone's, and
+        # each body to its joint empty, where they are
+        for child, to in ((e, heads.get(parent)), (body, e)):
+            if to is not None:
+                world = child.matrix_world.copy()
+                child.parent = to
+                child.matrix_world = world
+                mf.update()
+        activate(e)
+        bpy.ops.rigidbody.constraint_add(type='GENERIC')
+        c = e.rigid_body_constraint
+        c.object1 = bodies[parent] if parent else root
+        c.object2 = body
+        c.disable_collisions = True
+        c.use_breaking = False
+        c.breaking_threshold = 10.0
+        c.use_override_solver_iterations = False
+        if limits is None:
+            for ax in "xyz":
+                setattr(c, "use_limit_lin_" + ax, False)
+        else:
+            lock_translation(c)
+            limit_angles(c, limits)
+
+
 def collisions():
     ground(groups={0, 1})
 
@@ -327,7 +461,7 @@ def substeps():
         prev = bar
 
 
-CASES = [("ragdoll", ragdoll), ("rig-chain", rig_chain), ("kick", kick), ("collisions", collisions),
+CASES = [("ragdoll", ragdoll), ("addon-ragdoll", addon_ragdoll), ("rig-chain", rig_chain), ("kick", kick), ("collisions", collisions),
          ("breaking", breaking), ("outside", outside), ("deactivation", deactivation),
          ("substeps", substeps)]
 

@@ -2,7 +2,7 @@
 # Blender 4.5's and 5.2's own simulation of each test/fixtures/physics-sim/
 # scene, beside the Blender 3.4 one (NAME_sim.json, from make_sim_fixtures.sh):
 # NAME_sim-4.5.json and NAME_sim-5.2.json, same format (simulate_physics.py
-# --times 0.5,1,2: every rigid body at 0, 0.5, 1 and 2 s, with the Blender
+# --times 0.5,1,2,4: every rigid body at 0, 0.5, 1, 2 and 4 s, with the Blender
 # version that said so).  The .blend files are only opened, never re-saved:
 # they stay the Blender 3.4 files the 3.4 oracle was made from.
 #
@@ -38,7 +38,7 @@ oracle() {
     # simulate_physics.py takes its arguments after "--" under both the
     # Blender executable and a plain python with the bpy module.
     first=; [ "$name" = kick ] && first=--first-frame
-    "$py" "$SCRIPT" -- "$f" "$OUT/${name}_sim-$version.json" --times 0.5,1,2 $first
+    "$py" "$SCRIPT" -- "$f" "$OUT/${name}_sim-$version.json" --times 0.5,1,2,4 $first
   done
 }
 

@@ -16,7 +16,7 @@ they were still moving.
 With --times (seconds, comma-separated), the comparison cortex's tests
 make with each fixture of test/fixtures/physics-sim:
 
-    blender -b --factory-startup --python-exit-code 1 --python simulate_physics.py -- FILE.blend OUT.json --times 0.5,1,2
+    blender -b --factory-startup --python-exit-code 1 --python simulate_physics.py -- FILE.blend OUT.json --times 0.5,1,2,4
 
 OUT.json: {"blender_version", "fps", "times": [0, t...], "frames": [f0, ...],
            "objects": {name: [matrix_world at each time]},
@@ -127,7 +127,7 @@ def main():
         times = [0.0] + [float(t) for t in args[i + 1].split(",")]
         rest = args[:i] + args[i + 2:]
         if len(rest) != 2:
-            sys.exit("usage: simulate_physics.py FILE.blend OUT.json --times 0.5,1,2")
+            sys.exit("usage: simulate_physics.py FILE.blend OUT.json --times 0.5,1,2,4")
         at_times(rest[0], rest[1], times, first)
         return
     if len(args) not in (2, 3):

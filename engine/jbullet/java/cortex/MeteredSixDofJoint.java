@@ -92,7 +92,8 @@ public class MeteredSixDofJoint extends SixDofJoint {
 
         /**
          * Angle i: a motor as jBullet drives it, or a limit as Bullet 2.8
-         * holds it, along the unit axis (jBullet's axes are not).
+         * holds it, along the unit axis (jBullet's axes are not): a range
+         * limit only pushes, a locked angle is held both ways.
          */
         private void angularRow(int i, float dt) {
             com.bulletphysics.dynamics.constraintsolver.RotationalLimitMotor m = angularLimits[i];
@@ -109,16 +110,20 @@ public class MeteredSixDofJoint extends SixDofJoint {
             rbA.getAngularVelocity(va);
             rbB.getAngularVelocity(vb);
             va.sub(vb);
-            float target = -ERP * m.currentLimitError / dt;
+            float error = m.currentLimitError;
             float lo = -threshold;
             float hi = threshold;
-            if (m.loLimit < m.hiLimit) {
-                if (m.currentLimit == 1) {
-                    lo = 0f;
-                } else {
-                    hi = 0f;
-                }
+            if (m.hiLimit - m.loLimit <= 3 * ANGLE_LOCK_MARGIN) {
+                // a locked angle, widened by ANGLE_LOCK_MARGIN: held both
+                // ways, towards the lock itself, as Bullet 2.8 holds an
+                // angle whose limits are equal
+                error += m.currentLimit == 1 ? (float) -ANGLE_LOCK_MARGIN : (float) ANGLE_LOCK_MARGIN;
+            } else if (m.currentLimit == 1) {
+                lo = 0f;
+            } else {
+                hi = 0f;
             }
+            float target = -ERP * error / dt;
             float old = m.accumulatedImpulse;
             float sum = clamp(old + (target - axis.dot(va)) * inv, lo, hi);
             m.accumulatedImpulse = sum;

@@ -10,7 +10,7 @@
            (com.bulletphysics.collision.dispatch CollisionObject)
            (com.bulletphysics.collision.shapes CompoundShape ConvexHullShape)
            (com.bulletphysics.dynamics DynamicsWorld RigidBody)
-           (com.bulletphysics.dynamics.constraintsolver ConeTwistConstraint HingeConstraint)
+           (com.bulletphysics.dynamics.constraintsolver ConeTwistConstraint HingeConstraint SolverMode)
            (com.bulletphysics.linearmath MatrixUtil ScalarUtil Transform)
            (com.bulletphysics.linearmath.convexhull HullDesc HullFlags HullLibrary HullResult)
            (com.bulletphysics.util IntArrayList ObjectArrayList)
@@ -160,13 +160,22 @@
   (>= (.getAppliedImpulse joint) (double threshold)))
 
 (defn blender-solver-order!
-  "Have `space`'s solver visit constraints as Blender's world does, as
-  far as the engine goes: here nothing changes. jBullet's solver keeps
-  its random order, in which the Physics tab's 6-DOF joint, solving its
-  own rows (see MeteredSixDofJoint), follows Blender's rig-chain within
-  2%."
-  [_space]
-  nil)
+  "Have `space` solve contacts as Blender's world does, as far as jBullet
+  goes: two boxes meet through cortex.BoxBoxAlgorithm, all their contact
+  points at once, as through Blender's box-box algorithm, which jBullet
+  lacks (a ragdoll's shin no longer sinks through a ground plane); and
+  cortex.BlenderContactSolver solves the contacts as Bullet 2.8 does
+  (one friction row a point along its sliding, in a fixed order, warm
+  started; jBullet's own shuffles them every step and gives each point
+  two friction rows kept from step to step). Joints are solved as
+  jBullet solves them, in the order they were added. See the Physics
+  tab chapter for what each changed."
+  [^PhysicsSpace space]
+  (let [^DynamicsWorld w (.getDynamicsWorld space)]
+    (cortex.BoxBoxAlgorithm/register ^com.bulletphysics.collision.dispatch.CollisionDispatcher (.getDispatcher w))
+    (.setConstraintSolver ^com.bulletphysics.dynamics.DiscreteDynamicsWorld w (cortex.BlenderContactSolver.))
+    (set! (.solverMode (.getSolverInfo w))
+          (int (bit-or SolverMode/SOLVER_USE_WARMSTARTING SolverMode/SOLVER_CACHE_FRIENDLY)))))
 
 (defn- skew
   "The cross-product matrix of [x y z], rows."
