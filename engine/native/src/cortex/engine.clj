@@ -268,18 +268,35 @@
   [(- (* ay bz) (* az by)) (- (* az bx) (* ax bz)) (- (* ax by) (* ay bx))])
 (defn- dot ^double [[ax ay az] [bx by bz]] (+ (* ax bx) (* ay by) (* az bz)))
 
+(defn- cross-2d ^double [[ax ay] [bx by] [cx cy]]
+  (- (* (- (double bx) (double ax)) (- (double cy) (double ay)))
+     (* (- (double by) (double ay)) (- (double cx) (double ax)))))
+
 (defn- polygon-area
-  "The area of the convex polygon through `ps`, which lie on a plane of
-  normal `n`."
+  "The area of the convex hull of `ps`, which lie on a plane of normal
+  `n`: their convex hull in the plane (Andrew's monotone chain), so that
+  a point inside the face, or in the middle of an edge, adds nothing."
   ^double [ps n]
   (let [c (mapv #(/ (double %) (count ps)) (reduce #(mapv + %1 %2) ps))
-        u (v- (first ps) c)
-        w (cross n u)
-        sorted (sort-by #(let [d (v- % c)] (Math/atan2 (dot d w) (dot d u))) ps)
-        len (Math/sqrt (dot n n))]
-    (/ (reduce + (map (fn [a b] (/ (dot (cross (v- a c) (v- b c)) n) len))
-                      sorted (concat (rest sorted) [(first sorted)])))
-       2.0)))
+        far (apply max-key #(let [d (v- % c)] (dot d d)) ps)
+        u (let [d (v- far c) l (Math/sqrt (dot d d))] (mapv #(/ (double %) l) d))
+        w (let [d (cross n u) l (Math/sqrt (dot d d))] (mapv #(/ (double %) l) d))
+        flat (sort (distinct (map #(let [d (v- % c)] [(dot d u) (dot d w)]) ps)))
+        half (fn [pts] (reduce (fn [h p]
+                                 (loop [h h]
+                                   (if (and (>= (count h) 2)
+                                            (<= (cross-2d (h (- (count h) 2)) (peek h) p) 0.0))
+                                     (recur (pop h))
+                                     (conj h p))))
+                               [] pts))
+        lower (half flat)
+        upper (half (reverse flat))
+        hull (concat (pop lower) (pop upper))]
+    (if (< (count flat) 3)
+      0.0
+      (/ (Math/abs (reduce + (map (fn [[ax ay] [bx by]] (- (* (double ax) (double by)) (* (double bx) (double ay))))
+                                  hull (concat (rest hull) [(first hull)]))))
+         2.0))))
 
 (defn hull-volume
   "The volume of the convex hull of `points` ([[x y z] ...])."
