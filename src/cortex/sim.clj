@@ -274,11 +274,18 @@
             rot (.mult body-rot (.inverse rotation))
             ;; from the centre of mass back to the origin, in the world
             back (.negate (.mult rot (util/vec3 centre)))
-            [bx by bz :as b] [(.x back) (.y back) (.z back)]
-            [wx wy wz] w]
-        {:position (mapv + p b)
+            ;; on primitives (every step, every segment), the arithmetic
+            ;; the vectors did: a double plus a float's double
+            bx (double (.x back)) by (double (.y back)) bz (double (.z back))
+            [px py pz] p
+            [vx vy vz] lin
+            [wx wy wz] w
+            wx (double wx) wy (double wy) wz (double wz)]
+        {:position [(+ (double px) bx) (+ (double py) by) (+ (double pz) bz)]
          :rotation [(.getX rot) (.getY rot) (.getZ rot) (.getW rot)]
-         :velocity (mapv + lin [(- (* wy bz) (* wz by)) (- (* wz bx) (* wx bz)) (- (* wx by) (* wy bx))])
+         :velocity [(+ (double vx) (- (* wy bz) (* wz by)))
+                    (+ (double vy) (- (* wz bx) (* wx bz)))
+                    (+ (double vz) (- (* wx by) (* wy bx)))]
          :angular-velocity w})
       {:position p :rotation q :velocity lin :angular-velocity w})))
 
@@ -298,7 +305,8 @@
      (assoc :eyes (do (sync! sim) ((requiring-resolve 'cortex.sight/see!) sight)))
      (contains? parts :joints) (assoc :joints (p/read-joints sensors))
      (contains? parts :segments)
-     (assoc :segments (into {} (for [[n rb offset] segments] [n (segment-state rb offset)])))
+     (assoc :segments (persistent! (reduce (fn [m [n rb offset]] (assoc! m n (segment-state rb offset)))
+                                           (transient {}) segments)))
      (contains? parts :touch) (assoc :touch (touch/contacts space segment-names object-names))))))
 
 (defn step!

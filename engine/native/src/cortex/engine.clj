@@ -294,8 +294,9 @@
         hull (concat (pop lower) (pop upper))]
     (if (< (count flat) 3)
       0.0
-      (/ (Math/abs (reduce + (map (fn [[ax ay] [bx by]] (- (* (double ax) (double by)) (* (double bx) (double ay))))
-                                  hull (concat (rest hull) [(first hull)]))))
+      (/ (Math/abs (double (reduce + (map (fn [[ax ay] [bx by]]
+                                            (- (* (double ax) (double by)) (* (double bx) (double ay))))
+                                          hull (concat (rest hull) [(first hull)])))))
          2.0))))
 
 (defn hull-volume
