@@ -12,6 +12,7 @@
             [cortex.body :as body]
             [cortex.render :as render]
             [cortex.demo :as demo]
+            [cortex.sight :as sight]
             [cortex.util :as util]
             [cortex.world :as world])
   (:import (com.jme3.app SimpleApplication)
@@ -239,7 +240,7 @@
   creature's eyes see under each frame (see cortex.sight)."
   [w creature {:keys [out eyes?]} opts]
   (if eyes?
-    ((requiring-resolve 'cortex.sight/record-with-eyes!) w creature out opts)
+    (sight/record-with-eyes! w creature out opts)
     (render/record! w out opts)))
 
 (defn- show-offscreen!
