@@ -7,6 +7,7 @@ packages; see scripts/compare/README.md for the venv.  Without mujoco or
 pybullet it says so and exits 0.
 
     /work/venvs/compare/bin/python scripts/compare/humanoid_compare.py
+    ... --with-cortex         # start cortex on both engines and interleave its runs too
     ... --cortex-json FILE    # add cortex's own numbers (and picture) to the tables
     ... --quick               # 1 run of 200 + 1,000 steps, to try it out
     ... --check-fixture       # only compare test/fixtures/humanoid/expected.json with MuJoCo
@@ -40,8 +41,17 @@ centre of mass above the floor (chain: the mean height of the segments').
 Then it renders the final poses (MuJoCo offscreen through EGL, PyBullet's
 TinyRenderer) side by side into a PNG.
 
-cortex's side comes from a JSON file (--cortex-json), written by a Clojure
-benchmark that runs test/fixtures/humanoid/humanoid.blend the same way:
+With --with-cortex the script starts cortex itself, one JVM per engine
+(`bin/lein [with-profile +native] trampoline run -m cortex.compare serve`,
+from the repo root; see CortexServer), and asks it for one run at a time, so
+that every run of cortex's (test/fixtures/strangers/humanoid.blend, the
+humanoid built as MuJoCo's is; test/fixtures/humanoid/humanoid.blend, the
+clipped one; the chain of 100 boxes; each with and without observations)
+takes its turn after MuJoCo's and PyBullet's of the same case: run 1 of every
+row, then run 2, ...  cortex's steps/s are by the wall clock, as here.
+
+Otherwise cortex's side comes from a JSON file (--cortex-json), written by a
+Clojure benchmark that runs test/fixtures/humanoid/humanoid.blend the same way:
 
     {"engine": "cortex (jBullet)",              optional label
      "settings": "10 solver iterations, ...",   optional
