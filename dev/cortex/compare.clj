@@ -4,8 +4,9 @@
   and a 100-segment chain dropped in cortex.sim, timed, written as JSON.
 
   Entry points: `-main` (lein run -m cortex.compare [OUT.json] [runs];
-  lein run -m cortex.compare costs [runs]), `step-costs` (where a
-  step's time goes), `json`."
+  lein run -m cortex.compare costs [runs]; lein trampoline run -m
+  cortex.compare serve: `serve`, runs one at a time as the script asks),
+  `step-costs` (where a step's time goes), `json`."
   (:require [clojure.java.io :as io]
             [clojure.string :as str]
             [cortex.body :as body]
@@ -26,19 +27,28 @@
   (.getCurrentThreadCpuTime (ManagementFactory/getThreadMXBean)))
 
 (defn- timed-run
-  "Build `make`'s creature (sleeping off), step warm-up then `steps`
-  steps; [steps-per-cpu-second final-observation fastest-speed]."
-  [make floor warm-up steps]
+  "Build `make`'s creature (sleeping off) in a simulation observing
+  `observe` (#{} for nothing; cortex.sim's observations otherwise), step
+  warm-up then `steps` steps with no actions. {:steps-per-s (by the wall
+  clock, as the Python side times its engines) :cpu-steps-per-s (by the
+  stepping thread's CPU time) :fastest (the largest segment speed during
+  the warm-up) :sim}."
+  [make floor observe warm-up steps]
   (let [c (body/body! ^Node (make) {:sleeping-thresholds [0 0]})
-        s (sim/simulation c {:floor {:height floor :friction 1.0} :observe #{}})
+        s (sim/simulation c {:floor {:height floor :friction 1.0} :observe observe})
         speed (fn [o] (apply max (for [[_ {:keys [velocity]}] (:segments o)]
                                    (Math/sqrt (reduce + (map #(* % %) velocity))))))
         fastest (atom 0.0)]
     (dotimes [_ warm-up] (sim/step! s) (swap! fastest max (speed (sim/observe s #{:segments}))))
-    (let [t0 (cpu-ns)]
+    (let [t0 (System/nanoTime)
+          c0 (cpu-ns)]
       (dotimes [_ steps] (sim/step! s))
-      (let [t (/ (- (cpu-ns) t0) 1e9)]
-        [(/ steps t) (sim/observe s #{:segments}) @fastest s]))))
+      (let [c1 (cpu-ns)
+            t1 (System/nanoTime)]
+        {:steps-per-s (/ steps (/ (- t1 t0) 1e9))
+         :cpu-steps-per-s (/ steps (/ (- c1 c0) 1e9))
+         :fastest @fastest
+         :sim s}))))
 
 (defn- picture!
   "Draw simulation `s` as it is now, offscreen, from the side (as
@@ -80,27 +90,45 @@
 
 (defn- median [xs] (nth (sort xs) (quot (count xs) 2)))
 
+(defn- humanoid [] (util/load-blender-model "test/fixtures/humanoid/humanoid.blend"))
+
+(defn- chain-100 []
+  ((requiring-resolve 'cortex.bench.creatures/creature)
+   ((requiring-resolve 'cortex.bench.creatures/chain) 100) 1.0))
+
+(defn- torso-height
+  "The torso's centre of mass above the floor at `floor`: both humanoids'
+  torso origins are MuJoCo's torso centre of mass."
+  [obs floor]
+  (- (double (second (get-in obs [:segments "torso" :position]))) floor))
+
+(defn- mean-height
+  "The segments' mean height above the floor at `floor`."
+  [obs floor]
+  (/ (reduce + (for [[_ {[_ y] :position}] (:segments obs)] (- (double y) floor)))
+     (count (:segments obs))))
+
+(def ^:private settings
+  (str cortex.engine/solver-iterations " solver iterations, projection"
+       ", cones as 6-DOF, mesh mass properties, sleeping off"))
+
 (defn measure
-  "The numbers humanoid_compare.py reads, over `runs` runs."
+  "The numbers humanoid_compare.py reads (--cortex-json), over `runs`
+  runs (steps a second by the stepping thread's CPU time)."
   [runs]
-  (let [humanoid #(util/load-blender-model "test/fixtures/humanoid/humanoid.blend")
-        chain #((requiring-resolve 'cortex.bench.creatures/creature)
-                ((requiring-resolve 'cortex.bench.creatures/chain) 100) 1.0)
-        h (vec (repeatedly runs #(timed-run humanoid floor-z 1000 10000)))
-        c (vec (repeatedly runs #(timed-run chain -0.2 1000 10000)))
-        height (fn [obs seg floor] (- (double (second (get-in obs [:segments seg :position]))) floor))]
+  (let [run (fn [make floor] (timed-run make floor #{} 1000 10000))
+        h (vec (repeatedly runs #(run humanoid floor-z)))
+        c (vec (repeatedly runs #(run chain-100 -0.2)))
+        final (fn [r] (sim/observe (:sim r) #{:segments}))]
     {:engine (str "cortex (" cortex.engine/label ")")
-     :image (picture! (nth (peek h) 3) (str "out/compare/cortex-humanoid-" (name cortex.engine/name) ".png"))
-     :chain_image (picture! (nth (peek c) 3) (str "out/compare/cortex-chain-" (name cortex.engine/name) ".png"))
-     :settings (str cortex.engine/solver-iterations " solver iterations, projection"
-                    ", cones as 6-DOF, mesh mass properties, sleeping off")
-     :humanoid {:steps_per_s (median (map first h))
-                :final_torso_height (height (second (peek h)) "torso" floor-z)
-                :max_speed (apply max (map #(nth % 2) h))}
-     :chain {:steps_per_s (median (map first c))
-             :final_height (median (for [[_ obs] c]
-                                     (/ (reduce + (for [[_ {[_ y] :position}] (:segments obs)] (+ y 0.2)))
-                                        (count (:segments obs)))))}}))
+     :image (picture! (:sim (peek h)) (str "out/compare/cortex-humanoid-" (name cortex.engine/name) ".png"))
+     :chain_image (picture! (:sim (peek c)) (str "out/compare/cortex-chain-" (name cortex.engine/name) ".png"))
+     :settings settings
+     :humanoid {:steps_per_s (median (map :cpu-steps-per-s h))
+                :final_torso_height (torso-height (final (peek h)) floor-z)
+                :max_speed (apply max (map :fastest h))}
+     :chain {:steps_per_s (median (map :cpu-steps-per-s c))
+             :final_height (median (for [r c] (mean-height (final r) -0.2)))}}))
 
 (defn json
   "`x` (maps, sequences, strings, keywords, numbers, nil) as JSON text."
@@ -138,15 +166,81 @@
         timings (apply map vector (for [_ (range runs)] (mapv (comp one second) cost-settings)))]
     (mapv (fn [[label] ts] [label (median ts)]) cost-settings timings)))
 
+(def serve-cases
+  "What `serve` drops: name -> [make floor height]. The humanoid built
+  as MuJoCo's is (one closed piece per MuJoCo geom, overlapping at the
+  joints) and the clipped one stand with their feet at 0, MuJoCo's floor
+  under them (MuJoCo's start); the chain lies with its lowest point 1 m
+  above its floor."
+  {"humanoid-mujoco" [#(util/load-blender-model "test/fixtures/strangers/humanoid.blend")
+                      floor-z torso-height]
+   "humanoid-clipped" [humanoid floor-z torso-height]
+   "chain-100" [chain-100 -0.2 mean-height]})
+
+(def ^:private observed
+  "What a simulation \"with observations\" returns each step."
+  #{:joints :segments :touch})
+
+(defn- engine-jars
+  "The jars the engine's classes came from (their names carry the
+  versions): jME's Bullet API and, on jBullet, jBullet itself."
+  []
+  (vec (for [c ["com.jme3.bullet.PhysicsSpace" "com.bulletphysics.dynamics.DiscreteDynamicsWorld"]
+             :let [k (try (Class/forName c) (catch ClassNotFoundException _ nil))]
+             :when k]
+         (.getName (io/file (.getPath (.getLocation (.getCodeSource (.getProtectionDomain ^Class k)))))))))
+
+(defn serve
+  "Runs one at a time, as humanoid_compare.py asks on standard input, so
+  that it can interleave them with MuJoCo's and PyBullet's (and the other
+  engine's JVM). Every answer is one line, \"@@ \" and JSON (other lines
+  on standard output are not answers). First {:ready true ...}; then, per
+  line read:
+    run CASE off|observed WARMUP STEPS   one `timed-run` of `serve-cases`'
+                                         CASE, without or with observations
+    picture CASE FILE                    the last run of CASE as it lies, a PNG
+    quit"
+  []
+  (let [kept (atom {})
+        say (fn [m] (println (str "@@ " (json m))) (flush))]
+    (say {:ready true :engine cortex.engine/label :name cortex.engine/name :settings settings
+          :java (System/getProperty "java.version") :jars (engine-jars)})
+    (loop []
+      (when-let [line (read-line)]
+        (let [[cmd a b c d] (str/split (str/trim line) #"\s+")]
+          (when-not (= "quit" cmd)
+            (try
+              (case cmd
+                "run" (let [[make floor height] (or (serve-cases a)
+                                                    (throw (ex-info (str "no case " a) {})))
+                            r (timed-run make floor (if (= "observed" b) observed #{})
+                                         (Long/parseLong c) (Long/parseLong d))
+                            obs (sim/observe (:sim r) #{:segments})]
+                        (when-let [old (@kept a)] (sim/destroy! old))
+                        (swap! kept assoc a (:sim r))
+                        (say {:case a :observe b :steps_per_s (:steps-per-s r)
+                              :cpu_steps_per_s (:cpu-steps-per-s r) :max_speed (:fastest r)
+                              :final_height (height obs floor)}))
+                "picture" (say {:case a :picture (str (picture! (or (@kept a)
+                                                                    (throw (ex-info (str "no run of " a) {})))
+                                                                b))})
+                (say {:error (str "unknown command: " line)}))
+              (catch Throwable t (say {:error (str t)})))
+            (recur)))))))
+
 (defn -main
   "lein run -m cortex.compare [OUT.json] [runs]
-  lein run -m cortex.compare costs [runs]"
+  lein run -m cortex.compare costs [runs]
+  lein trampoline run -m cortex.compare serve"
   [& [out runs]]
-  (if (= "costs" out)
+  (cond
+    (= "serve" out) (do (serve) (shutdown-agents) (System/exit 0))
+    (= "costs" out)
     (do (println cortex.engine/name "- microseconds a step of the humanoid, sleeping off:")
         (doseq [[label us] (step-costs (Long/parseLong (or runs "3")))]
           (println (format "%-40s %6.1f" label (double us))))
         (shutdown-agents))
+    :else
     (let [out (or out "out/bench/cortex-humanoid.json")
           m (measure (Long/parseLong (or runs "3")))]
       (io/make-parents out)

@@ -7,6 +7,7 @@ packages; see scripts/compare/README.md for the venv.  Without mujoco or
 pybullet it says so and exits 0.
 
     /work/venvs/compare/bin/python scripts/compare/humanoid_compare.py
+    ... --with-cortex         # start cortex on both engines and interleave its runs too
     ... --cortex-json FILE    # add cortex's own numbers (and picture) to the tables
     ... --quick               # 1 run of 200 + 1,000 steps, to try it out
     ... --check-fixture       # only compare test/fixtures/humanoid/expected.json with MuJoCo
@@ -40,8 +41,17 @@ centre of mass above the floor (chain: the mean height of the segments').
 Then it renders the final poses (MuJoCo offscreen through EGL, PyBullet's
 TinyRenderer) side by side into a PNG.
 
-cortex's side comes from a JSON file (--cortex-json), written by a Clojure
-benchmark that runs test/fixtures/humanoid/humanoid.blend the same way:
+With --with-cortex the script starts cortex itself, one JVM per engine
+(`bin/lein [with-profile +native] trampoline run -m cortex.compare serve`,
+from the repo root; see CortexServer), and asks it for one run at a time, so
+that every run of cortex's (test/fixtures/strangers/humanoid.blend, the
+humanoid built as MuJoCo's is; test/fixtures/humanoid/humanoid.blend, the
+clipped one; the chain of 100 boxes; each with and without observations)
+takes its turn after MuJoCo's and PyBullet's of the same case: run 1 of every
+row, then run 2, ...  cortex's steps/s are by the wall clock, as here.
+
+Otherwise cortex's side comes from a JSON file (--cortex-json), written by a
+Clojure benchmark that runs test/fixtures/humanoid/humanoid.blend the same way:
 
     {"engine": "cortex (jBullet)",              optional label
      "settings": "10 solver iterations, ...",   optional
@@ -60,8 +70,11 @@ import argparse
 import json
 import math
 import os
+import queue
 import statistics
+import subprocess
 import sys
+import threading
 import time
 
 for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
@@ -377,6 +390,91 @@ class PybulletRun:
 # ------------------------------------------------------------------ running
 
 
+# ------------------------------------------------------------------ cortex
+
+
+CORTEX_COMMANDS = {
+    "jbullet": ["bin/lein", "trampoline", "run", "-m", "cortex.compare", "serve"],
+    "native": ["bin/lein", "with-profile", "+native", "trampoline", "run", "-m",
+               "cortex.compare", "serve"],
+}
+# per case of this script: (cortex.compare/serve-cases name, label)
+CORTEX_CASES = {"humanoid": [("humanoid-mujoco", "MuJoCo-shaped"), ("humanoid-clipped", "clipped")],
+                "chain": [("chain-100", "chain of boxes")]}
+CORTEX_OBSERVE = [("off", ""), ("observed", " +obs")]
+
+
+class CortexServer:
+    """One cortex JVM (`lein trampoline run -m cortex.compare serve`, from the repo root)
+    that does one run at a time when asked on its standard input, so that its runs
+    interleave with MuJoCo's and PyBullet's.  Its other output goes to a log."""
+
+    def __init__(self, which, log_dir):
+        os.makedirs(log_dir, exist_ok=True)
+        self.which = which
+        self.log_path = os.path.join(log_dir, "cortex-%s.log" % which)
+        self.log = open(self.log_path, "w")
+        self.proc = subprocess.Popen(CORTEX_COMMANDS[which], cwd=REPO, stdin=subprocess.PIPE,
+                                     stdout=subprocess.PIPE, stderr=self.log, text=True,
+                                     bufsize=1)
+        self.answers = queue.Queue()
+        threading.Thread(target=self._read, daemon=True).start()
+        self.hello = None
+
+    def _read(self):
+        for line in self.proc.stdout:
+            if line.startswith("@@ "):
+                try:
+                    self.answers.put(json.loads(line[3:]))
+                except ValueError:
+                    self.answers.put({"error": "unreadable answer: " + line.strip()})
+            else:
+                self.log.write(line)
+                self.log.flush()
+        self.answers.put(None)
+
+    def _answer(self, timeout):
+        try:
+            a = self.answers.get(timeout=timeout)
+        except queue.Empty:
+            raise RuntimeError("cortex (%s) gave no answer in %d s; see %s" % (
+                self.which, timeout, self.log_path))
+        if a is None:
+            raise RuntimeError("cortex (%s) stopped; see %s" % (self.which, self.log_path))
+        if "error" in a:
+            raise RuntimeError("cortex (%s): %s" % (self.which, a["error"]))
+        return a
+
+    def ready(self, timeout=1200):
+        self.hello = self._answer(timeout)
+        return self.hello
+
+    def ask(self, line, timeout=1800):
+        self.proc.stdin.write(line + "\n")
+        self.proc.stdin.flush()
+        return self._answer(timeout)
+
+    @property
+    def engine(self):
+        return "cortex " + (self.hello or {}).get("engine", self.which)
+
+    def close(self):
+        try:
+            self.proc.stdin.write("quit\n")
+            self.proc.stdin.flush()
+            self.proc.wait(60)
+        except Exception:
+            self.proc.kill()
+            self.proc.wait()
+        self.log.close()
+
+
+def cortex_run(server, case, observe, args):
+    r = server.ask("run %s %s %d %d" % (case, observe, args.warmup, args.steps))
+    return {"steps_per_s": r["steps_per_s"], "cpu_steps_per_s": r["cpu_steps_per_s"],
+            "max_speed": r["max_speed"], "final_height": r["final_height"]}
+
+
 def run_once(cls, case, args):
     """Build, warm up (tracking speeds), time; return the numbers and the live run."""
     import numpy as np
@@ -541,7 +639,7 @@ def fmt_row(cols, widths):
 def table(case, rows):
     head = ["engine", "steps/s", "sim s/s", "x MuJoCo", "max speed", "end speed",
             "torso height" if case == "humanoid" else "mean height", "settings"]
-    widths = [22, 9, 8, 8, 9, 9, 12, 0]
+    widths = [40, 9, 8, 8, 9, 9, 12, 0]
     ref = next((r["steps_per_s"] for r in rows if r["engine"] == "MuJoCo"), None)
     lines = [fmt_row(head, widths), fmt_row(["-" * w for w in widths[:-1]] + ["-" * 8], widths)]
 
@@ -578,6 +676,11 @@ def main():
     ap.add_argument("--cortex-json", action="append", default=[],
                     help="cortex's numbers (see the docstring for the format); give it once "
                          "per engine to put both in the tables")
+    ap.add_argument("--with-cortex", action="store_true",
+                    help="start cortex's JVMs (bin/lein trampoline run -m cortex.compare serve, "
+                         "on jBullet and with +native) and interleave their runs with the others")
+    ap.add_argument("--cortex-engines", default="jbullet,native",
+                    help="with --with-cortex: which of jbullet,native (default both)")
     ap.add_argument("--out", default=os.path.join(REPO, "out", "compare"),
                     help="folder for humanoid_compare.png and .json (default out/compare)")
     ap.add_argument("--check-fixture", action="store_true",
@@ -610,6 +713,22 @@ def main():
                                                "agrees with"))
         return 1 if fixture_problems else 0
 
+    servers = []
+    if args.with_cortex:
+        # started one after the other (their first start compiles classes), before the
+        # timed runs; each then idles on its standard input between runs
+        for which in [w.strip() for w in args.cortex_engines.split(",") if w.strip()]:
+            print("starting cortex (%s): %s" % (which, " ".join(CORTEX_COMMANDS[which])),
+                  file=sys.stderr, flush=True)
+            server = CortexServer(which, args.out)
+            servers.append(server)
+            try:
+                server.ready()
+            except RuntimeError as e:
+                for sv in servers:
+                    sv.close()
+                print(e)
+                return 1
     notes = divergence_notes(args)
     cortexes = []
     for path in args.cortex_json:
@@ -619,6 +738,14 @@ def main():
     cases = ["humanoid"] + ([] if args.no_chain else ["chain"])
     engines = [MujocoRun, PybulletRun]
     results = {(c, e.engine): [] for c in cases for e in engines}
+    cortex_rows = {c: [] for c in cases}     # [(label, server, serve case, observe)]
+    for case in cases:
+        for server in servers:
+            for name, shape in CORTEX_CASES[case]:
+                for observe, mark in CORTEX_OBSERVE:
+                    label = "%s %s%s" % (server.engine, shape, mark)
+                    cortex_rows[case].append((label, server, name, observe))
+                    results[(case, label)] = []
     last = {}
     t_start = time.time()
     for run in range(args.runs):
@@ -630,8 +757,20 @@ def main():
                     last[(case, cls.engine)] = sim
                 else:
                     sim.close()
-                print("run %d/%d %-8s %-8s %8.0f steps/s  height %.3f  max speed %.2f" % (
+                print("run %d/%d %-8s %-40s %8.0f steps/s  height %.3f  max speed %.2f" % (
                     run + 1, args.runs, case, cls.engine, r["steps_per_s"], r["final_height"],
+                    r["max_speed"]), file=sys.stderr, flush=True)
+            for label, server, name, observe in cortex_rows[case]:
+                try:
+                    r = cortex_run(server, name, observe, args)
+                except RuntimeError as e:
+                    for sv in servers:
+                        sv.close()
+                    print(e)
+                    return 1
+                results[(case, label)].append(r)
+                print("run %d/%d %-8s %-40s %8.0f steps/s  height %.3f  max speed %.2f" % (
+                    run + 1, args.runs, case, label, r["steps_per_s"], r["final_height"],
                     r["max_speed"]), file=sys.stderr, flush=True)
 
     print()
@@ -640,6 +779,16 @@ def main():
               mujoco.__version__, pybullet_version(), __import__("numpy").__version__,
               sys.version.split()[0], args.warmup, args.steps, args.runs,
               time.time() - t_start))
+    for server in servers:
+        h = server.hello
+        print("%s: %s, Java %s, in its own JVM (%s): %s, dt 1/60" % (
+            server.engine, ", ".join(h.get("jars", [])), h.get("java"),
+            " ".join(CORTEX_COMMANDS[server.which]), h.get("settings")))
+    if servers:
+        print("interleaved: each run is MuJoCo, PyBullet, then every cortex row of the case "
+              "in table order (one JVM per engine, each idle while the others run), then the "
+              "next case; cortex's steps/s by the wall clock, as the others'; +obs: step! "
+              "returns the joints, segments and touch; the others return nothing")
     for n in notes:
         print("note: " + n)
     if fixture_problems is not None:
@@ -647,6 +796,7 @@ def main():
             "agrees with MuJoCo's humanoid (masses, centres of mass, inertia, anchors, axes, "
             "ranges)" if not fixture_problems else "DIFFERS: " + "; ".join(fixture_problems)))
     report = {"mujoco": mujoco.__version__, "pybullet": pybullet_version(), "notes": notes,
+              "cortex": [dict(s.hello, command=CORTEX_COMMANDS[s.which]) for s in servers],
               "warmup": args.warmup, "steps": args.steps, "runs": args.runs, "cases": {}}
     for case in cases:
         rows = []
@@ -654,6 +804,15 @@ def main():
             s = summarise(results[(case, cls.engine)])
             s["engine"] = cls.engine
             s["settings"] = last[(case, cls.engine)].settings
+            rows.append(s)
+        for label, server, name, observe in cortex_rows[case]:
+            s = summarise(results[(case, label)])
+            s["engine"] = label
+            s["cortex_case"] = name
+            s["cpu_steps_per_s"] = statistics.median(r["cpu_steps_per_s"]
+                                                     for r in results[(case, label)])
+            s["settings"] = ("as above; step! returns joints, segments, touch"
+                             if observe == "observed" else "as above; step! returns nothing")
             rows.append(s)
         for cortex in cortexes:
             if case not in cortex:
@@ -665,8 +824,14 @@ def main():
                          "final_height": c.get("final_torso_height", c.get("final_height")),
                          "settings": cortex.get("settings", "")})
         title = ("humanoid (Gymnasium's humanoid.xml, 13 bodies, 17 hinges), dropped from "
-                 "MuJoCo's initial pose" if case == "humanoid" else
-                 "chain of %d capsules with hinges, dropped 1 m" % args.chain_segments)
+                 "MuJoCo's initial pose" + (
+                     "; cortex: test/fixtures/strangers/humanoid.blend (MuJoCo-shaped: one "
+                     "closed piece per geom, overlapping at the joints) and "
+                     "test/fixtures/humanoid/humanoid.blend (clipped)" if servers else "")
+                 if case == "humanoid" else
+                 "chain of %d capsules with hinges, dropped 1 m" % args.chain_segments + (
+                     " (cortex: boxes 1.0 x 0.4 x 0.4, cortex.bench.creatures/chain)"
+                     if servers else ""))
         print()
         print(title)
         print(table(case, rows))
@@ -691,6 +856,23 @@ def main():
                                "torso" if case == "humanoid" else "mean height",
                                s["final_height"], s["steps_per_s"]),
                             s["settings"]], img))
+        for label, server, name, observe in cortex_rows[case]:
+            if observe != "off":
+                continue
+            path = os.path.join(args.out, "cortex-%s-%s.png" % (server.which, name))
+            img = None
+            try:
+                server.ask("picture %s %s" % (name, path), timeout=300)
+                from PIL import Image
+                img = Image.open(path)
+            except RuntimeError as e:
+                print("could not draw %s: %s" % (label, e))
+            s = next(r for r in report["cases"][case] if r["engine"] == label)
+            panels.append(("%s: %s" % (label, case),
+                           ["%s %.3f m, %.0f steps/s" % (
+                               "torso" if case == "humanoid" else "mean height",
+                               s["final_height"], s["steps_per_s"]),
+                            server.hello.get("settings", "")], img))
         for cortex in cortexes:
             if case not in cortex:
                 continue
@@ -712,6 +894,8 @@ def main():
     stacked(picture_rows, png)
     for sim in last.values():
         sim.close()
+    for server in servers:
+        server.close()
     with open(os.path.join(args.out, "humanoid_compare.json"), "w") as f:
         json.dump(report, f, indent=1)
     print()
