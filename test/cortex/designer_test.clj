@@ -4,6 +4,7 @@
             [clojure.test :refer [deftest is testing]]
             [cortex.blender-test :refer [read-json]]
             [cortex.body :as body]
+            [cortex.drops :as drops]
             [cortex.engine :as engine]
             [cortex.util :as util]
             [cortex.world :as world])
@@ -169,10 +170,8 @@
   [^Node creature & [seconds]]
   (.updateGeometricState creature)
   (let [segs (vec (body/segments creature))
-        lowest (apply min (for [^Geometry g segs
-                                :let [b ^com.jme3.bounding.BoundingBox (.getWorldBound g)]]
-                            (- (.y (.getCenter b)) (.getYExtent b))))
-        _ (.move creature 0 (float (- 0.5 lowest)) 0)
+        [lowest] (drops/extent creature)
+        _ (.move creature 0 (float (- 0.5 (double lowest))) 0)
         _ (.rotate creature 0.05 0.3 0.02)
         _ (.updateGeometricState creature)
         ;; built where it was put: a RigidBodyControl takes its place

@@ -2,16 +2,14 @@
 (ns cortex.physics-trust-test
   (:require [clojure.test :refer [deftest is testing]]
             [cortex.body :as body]
-            [cortex.drops :refer [cone-angles drop! energy export extent limit-overshoot
-                                  overshoot place! speeds]]
+            [cortex.drops :refer [cone-angles drop! energy export overshoot speeds]]
             [cortex.engine :as engine]
             [cortex.projection :as projection]
             [cortex.proprioception :as p]
             [cortex.sim :as sim]
             [cortex.util :as util])
-  (:import (com.jme3.bounding BoundingBox)
-           (com.jme3.math Quaternion)
-           (com.jme3.scene Geometry Node)))
+  (:import (com.jme3.math Quaternion)
+           (com.jme3.scene Geometry)))
 
 (def ^:private creatures
   {"humanoid" "test/fixtures/humanoid/humanoid.blend"
