@@ -8,13 +8,16 @@
   Entry points: `plan`, `build!`, `plan-parts` (part of a plan, as
   `cortex.body/physical!` and `joints!` make), `version`."
   (:require [clojure.string :as str]
+            [cortex.constraint :as constraint]
             [cortex.joint :as joint]
             [cortex.nearest :as nearest]
+            [cortex.rigid-body :as rigid-body]
             [cortex.segment :as segment]
             [cortex.vision :as vision])
   (:import (com.jme3.bullet.control RigidBodyControl)
            (com.jme3.scene Geometry Node Spatial)
            (java.util IdentityHashMap)
+           (java.util.concurrent ConcurrentHashMap)
            (java.util.logging Logger)))
 
 (set! *warn-on-reflection* true)
@@ -115,6 +118,64 @@
                               (nearest/overlap-warnings index joined)
                               (nearest/limit-warnings joints)))})))
 
+(defn- members
+  "Of `nodes`, those whose names are in `names` and those that are not,
+  or all of them when `names` is nil (no collection to go by) or `all?`."
+  [nodes names all?]
+  (if (or all? (nil? names))
+    [nodes []]
+    (let [in (set names)]
+      [(filter #(in (.getName ^Spatial %)) nodes) (remove #(in (.getName ^Spatial %)) nodes)])))
+
+(defn- names-of [nodes] (mapv #(.getName ^Spatial %) nodes))
+
+(defn- tab-warning [message] {:kind :physics-tab :warning? true :message message})
+
+(defn- plan-tab
+  "The Physics-tab part of the plan of `creature`: {:bodies (segment
+  plans, :kind :rigid-body) :spatials (the Spatials their bodies go on)
+  :constraints :world :joint-order :warnings}."
+  [^Node creature {:keys [all-rigid-bodies? simulation?] :or {simulation? true}}]
+  (let [world (constraint/world-settings creature)
+        [body-nodes left] (members (rigid-body/rigid-body-objects creature)
+                                   (:collection-objects world) all-rigid-bodies?)
+        [con-nodes con-left] (members (rigid-body/constraint-objects creature)
+                                      (:constraint-objects world) all-rigid-bodies?)
+        spatials (mapv rigid-body/body-spatial body-nodes)
+        bodies (mapv (fn [^Node n ^Spatial s]
+                       (assoc (rigid-body/plan-rigid-body n)
+                              :id (.getName n) :path (path-of creature s)))
+                     body-nodes spatials)
+        by-name (into {} (map (juxt :name identity)) bodies)
+        excluded (set (names-of left))
+        out? #(some excluded ((juxt :ob1 :ob2) (rigid-body/rigid-body-constraint %)))
+        skipped (filter out? con-nodes)
+        constraints (mapv #(constraint/plan-constraint % by-name) (remove out? con-nodes))
+        settings (when simulation? (constraint/simulation-settings world))]
+    {:bodies bodies
+     :spatials spatials
+     :constraints constraints
+     :world settings
+     :joint-order (:constraint-objects world)
+     :warnings
+     (mapv tab-warning
+           (concat
+            (when (seq left)
+              [(str "rigid bodies " (pr-str (names-of left)) " are not in the Rigid Body"
+                    " World's collection: Blender does not simulate them, and they are"
+                    " not built ({:all-rigid-bodies? true} builds them)")])
+            (when (seq con-left)
+              [(str "rigid body constraints " (pr-str (names-of con-left)) " are not in"
+                    " the Rigid Body World's constraints collection: not built")])
+            (when (seq skipped)
+              [(str "rigid body constraints " (pr-str (names-of skipped)) " join bodies"
+                    " that are not built: not built")])
+            (when (and settings (> (double (:time-scale settings)) 1.0))
+              [(str "the Rigid Body World's time scale is " (:time-scale settings)
+                    ": a cortex world steps at most 1/60 s of physics a frame; set its"
+                    " BulletAppState's speed to the time scale to follow it")])
+            (mapcat :warnings bodies) (mapcat :warnings constraints)))}))
+
 (defn- identity-lookup
   "A function from each of `ks` (by identity) to its `vs`."
   [ks vs]
@@ -126,42 +187,60 @@
   "The plan of `creature` (see `plan`) for `parts`, a set of :segments,
   :joints and :eyes. Without :segments, the plan holds the segments
   that already have a rigid body (kept), and the joints and eyes are
-  found among them, as `cortex.body/joints!` does."
+  found among them, as `cortex.body/joints!` does. With :physics-tab?
+  in `opts`, the Physics tab's bodies and constraints come first (see
+  `plan-tab`), and cortex's own segments, joints and eyes follow only
+  when the creature has a joints empty."
   [^Node creature opts parts]
-  (let [opts (merge segment/default-options opts)]
+  (let [opts (merge segment/default-options opts)
+        tab? (:physics-tab? opts)]
     (.updateGeometricState creature)
-    (let [all (vec (segment/segments creature))
-          geoms (if (:segments parts) all (filterv nearest/physical? all))
+    (let [tab (when tab? (plan-tab creature opts))
+          taken (identity-lookup (:spatials tab) (:bodies tab))
+          parts (if (and tab? (empty? (nearest/joints creature))) #{} parts)
+          all (vec (segment/segments creature))
+          free (remove taken all)
+          geoms (vec (if (:segments parts) free (filter nearest/physical? free)))
           ids (ids geoms)
-          id-of (identity-lookup geoms ids)
+          planned (identity-lookup geoms ids)
+          id-of (fn [g] (or (:id (taken g)) (planned g)))
           segments (plan-segments creature geoms ids opts)
-          index (nearest/index-of geoms)
+          index (nearest/index-of (filter #(or (taken %) (planned %)) all))
           tol (double (or (:tolerance opts) (nearest/tolerance index)))
           js (when (:joints parts) (plan-joints creature index tol id-of opts))
           eyes (when (and (:eyes parts) (instance? Node (.getChild creature "eyes")))
                  (vision/plan-eyes creature index tol id-of))]
       (segment/plain
-       {:plan/version version
-        :creature (.getName creature)
-        :parts (vec (sort parts))
-        :options opts
-        :tolerance tol
-        :segments segments
-        :joints (:joints js [])
-        :eyes (or eyes [])
-        :doubts (:doubts js [])
-        :warnings (:warnings js [])}))))
-
+       (cond-> {:plan/version version
+                :creature (.getName creature)
+                :parts (vec (sort (cond-> parts tab? (conj :physics-tab))))
+                :options opts
+                :tolerance tol
+                :segments (into (vec (:bodies tab)) segments)
+                :joints (:joints js [])
+                :eyes (or eyes [])
+                :doubts (:doubts js [])
+                :warnings (into (vec (:warnings js [])) (:warnings tab))}
+         tab? (assoc :constraints (:constraints tab)
+                     :world (:world tab)
+                     :joint-order (:joint-order tab)))))))
 (defn plan
   "What `body!` would make of `creature` (a Node loaded from Blender, or
   built in code the same way), as plain data: every segment, joint and
   eye, and the doubts and warnings, decided from the scene graph alone
   (see the chapter for the shape). `opts` as cortex.body/body!'s (see
-  cortex.segment/default-options). Errors are those body! gives,
-  naming the creature and the segment, joint or eye at fault; with
-  :strict? (the default) a doubt about any joint is one."
+  cortex.segment/default-options), and cortex.physics-tab/build!'s
+  (:all-rigid-bodies?, :simulation?); :physics-tab? says whether the
+  Physics tab's rigid bodies and constraints are planned, by default
+  when the creature has any. Errors are those body! gives, naming the
+  creature and the segment, joint or eye at fault; with :strict? (the
+  default) a doubt about any joint is one."
   ([creature] (plan creature {}))
-  ([creature opts] (plan-parts creature opts #{:segments :joints :eyes})))
+  ([^Node creature opts]
+   (let [tab? (if (contains? opts :physics-tab?)
+                (:physics-tab? opts)
+                (boolean (seq (rigid-body/rigid-body-objects creature))))]
+     (plan-parts creature (assoc opts :physics-tab? tab?) #{:segments :joints :eyes}))))
 
 (defn- segment-at
   "The Geometry planned segment `p` names in `creature`."
@@ -191,9 +270,30 @@
 
 (defn- log-warnings!
   [^Node creature warnings]
-  (let [logger (Logger/getLogger "cortex.body")]
-    (doseq [{:keys [message]} warnings]
-      (.warning logger (str (segment/label creature) ": " message)))))
+  (let [logger (Logger/getLogger "cortex.body")
+        tab-logger (Logger/getLogger "cortex.physics-tab")]
+    (doseq [{:keys [kind ^String message]} warnings]
+      (if (= :physics-tab kind)
+        (.warning tab-logger message)
+        (.warning logger (str (segment/label creature) ": " message))))))
+
+(defn- build-rigid-body
+  "The rigid body of planned Physics-tab body `p`, made or kept."
+  [^Node creature {:keys [id name path kept?] :as p}]
+  (let [s (at-path creature path)
+        node (cond (instance? Node s) s s (.getParent s))]
+    (when-not (and node (= name (.getName ^Spatial node)))
+      (throw (ex-info (str (segment/label creature) ": the plan's rigid body " (pr-str id)
+                           " is not where the plan says (" (pr-str path) "); make the plan"
+                           " from this creature")
+                      {:creature (.getName creature) :segment id :path path})))
+    (let [c (if kept?
+              (.getControl s RigidBodyControl)
+              (rigid-body/build-rigid-body! s node p))]
+      {:id id :geom s :spatial s :control c :rigid-body? true
+       :report {:object name :control c :spatial s :shape (:blender-shape p)
+                :mass (if kept? (.getMass ^RigidBodyControl c) (:mass p))
+                :warnings (:warnings p)}})))
 
 (defn- merged
   "The record of a creature that held `old`, after building `plan`,
@@ -210,14 +310,25 @@
         new-built (into {} (map (juxt :id identity)) (:segments built))
         old-built-ids (set (map :id (:segments old-built)))
         pick (fn [part ks] (if (or (parts part) (nil? old-plan)) (select-keys plan ks) (select-keys old-plan ks)))]
-    {:plan (merge (dissoc plan :joints :doubts :warnings :tolerance :eyes)
-                  {:segments segments}
-                  (pick :joints [:joints :doubts :warnings :tolerance])
-                  (pick :eyes [:eyes]))
-     :built {:segments (vec (concat (map #(new-built (:id %) %) (:segments old-built))
+    {:plan (merge old-plan
+                  (dissoc plan :joints :doubts :warnings :tolerance :eyes)
+                  {:parts (vec (sort (into (set (:parts old-plan)) parts)))
+                   :segments segments}
+                  (pick :joints [:joints :doubts :tolerance])
+                  (pick :eyes [:eyes])
+                  ;; the Physics tab's warnings stay with it
+                  {:warnings (let [tab? #(= :physics-tab (:kind %))]
+                               (vec (concat (remove tab? (:warnings (if (or (parts :joints) (nil? old-plan))
+                                                                      plan old-plan)))
+                                            (filter tab? (:warnings (if (or (parts :physics-tab) (nil? old-plan))
+                                                                      plan old-plan))))))})
+     :built (merge
+            {:segments (vec (concat (map #(new-built (:id %) %) (:segments old-built))
                                     (remove #(old-built-ids (:id %)) (:segments built))))
              :joints (if (or (parts :joints) (nil? old-built)) (:joints built) (:joints old-built))
-             :eyes (if (or (parts :eyes) (nil? old-built)) (:eyes built) (:eyes old-built))}}))
+             :eyes (if (or (parts :eyes) (nil? old-built)) (:eyes built) (:eyes old-built))}
+            (select-keys old-built [:bodies :constraints :broken])
+            (select-keys built [:bodies :constraints :broken]))}))
 
 (defn build!
   "Make `creature` physical as `plan` (see `plan`) says: a rigid body for
@@ -228,6 +339,8 @@
   (.updateGeometricState creature)
   (let [built-segments
         (mapv (fn [{:keys [id kept?] :as p}]
+                (if (= :rigid-body (:kind p))
+                  (build-rigid-body creature p)
                 (let [g (segment-at creature p)]
                   {:id id :geom g
                    :control (if kept?
@@ -236,7 +349,7 @@
                                                        " the rigid body of segment " (pr-str id)
                                                        ", which has none; make the plan again")
                                                   {:creature (.getName creature) :segment id})))
-                              (segment/in-creature creature #(segment/build-segment! g p)))}))
+                              (segment/in-creature creature #(segment/build-segment! g p)))})))
               (:segments plan))
         by-id (into {} (map (juxt :id identity)) built-segments)
         built-of (fn [j id]
@@ -251,7 +364,17 @@
                                           #(joint/build-joint! (:control a) (:control b) j))
                                        a b)))
                      (:joints plan))
-        eyes (vision/build-eyes (:eyes plan) by-id)]
+        eyes (vision/build-eyes (:eyes plan) by-id)
+        tab (when (contains? plan :constraints)
+              (let [reports (mapv #(constraint/build-constraint! % by-id) (:constraints plan))
+                    broken (ConcurrentHashMap.)]
+                (.addControl creature ^com.jme3.scene.control.Control
+                             (constraint/simulation-control
+                              (:world plan) (filterv :breaking-threshold reports) broken
+                              (constraint/blender-joint-order reports (:joint-order plan))))
+                {:bodies (vec (keep :report built-segments)) :constraints reports :broken broken}))]
     (log-warnings! creature (:warnings plan))
     (segment/record! creature (merged (segment/record creature) plan
-                                      {:segments built-segments :joints joints :eyes eyes}))))
+                                      (merge {:segments (mapv #(dissoc % :report) built-segments)
+                                              :joints joints :eyes eyes}
+                                             tab)))))

@@ -4,7 +4,8 @@
   placed in Blender, and reading the data attached to them.
 
   Entry points: `meta-data` (an object's custom property),
-  `sense-nodes` (the markers under a named parent), `camera-key`."
+  `sense-nodes` (the markers under a named parent), `camera-key`,
+  `rigid-body-key`, `constraint-key`, `world-key`."
   (:import (com.jme3.scene Geometry Node Spatial)))
 
 (set! *warn-on-reflection* true)
@@ -24,6 +25,21 @@
   settings: {:type :lens :sensor-width :sensor-height :sensor-fit
   :clip-start :clip-end :ortho-scale :shift-x :shift-y}."
   "cortex.blender.camera")
+
+(def rigid-body-key
+  "The user data under which an object's Node carries its Blender rigid
+  body settings (the Physics tab; see cortex.blender.rigid-body)."
+  "blender-rigid-body")
+
+(def constraint-key
+  "The user data under which an object's Node carries its Blender rigid
+  body constraint."
+  "blender-rigid-body-constraint")
+
+(def world-key
+  "The user data under which the scene's Node carries its Rigid Body
+  World."
+  "blender-rigid-body-world")
 
 (defn sense-nodes
   "A function of a creature that returns the children of the creature's

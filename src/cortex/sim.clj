@@ -154,16 +154,18 @@
                          ", not " (pr-str observe))
                     opts))))
 
-(defn- has-body? [creature]
-  (try (body/joint-records creature) true
-       (catch clojure.lang.ExceptionInfo _ false)))
+(defn- has-body?
+  "Whether `creature` has been given cortex's body: its plan (see
+  cortex.plan) has its joints."
+  [creature]
+  (contains? (set (get-in (segment/record creature) [:plan :parts])) :joints))
 
 (defn- tab-settings
   "The settings of `creature`'s Physics tab (see
   cortex.physics-tab/simulation-settings), nil for a creature without
   one."
   [^Node creature]
-  (.getUserData creature ^String world/simulation-key))
+  (get-in (segment/record creature) [:plan :world]))
 
 (defn- set-solver!
   "Override `space`'s solver iterations and substeps with those `solver`

@@ -13,24 +13,25 @@
   names of that user data: `rigid-body-key`, `constraint-key`,
   `world-key`."
   (:require [clojure.string :as str]
-            [cortex.blender.file :as f]))
+            [cortex.blender.file :as f]
+            [cortex.sense :as sense]))
 
 (set! *warn-on-reflection* true)
 
 (def rigid-body-key
   "The user data under which an object's Node carries its rigid body
   settings (see `rigid-body`)."
-  "blender-rigid-body")
+  sense/rigid-body-key)
 
 (def constraint-key
   "The user data under which an object's Node carries its rigid body
   constraint (see `rigid-body-constraint`)."
-  "blender-rigid-body-constraint")
+  sense/constraint-key)
 
 (def world-key
   "The user data under which the scene's Node carries its Rigid Body
   World (see `rigid-body-world`)."
-  "blender-rigid-body-world")
+  sense/world-key)
 
 (def body-types
   "eRigidBodyOb_Type: what part a rigid body plays."

@@ -1,0 +1,97 @@
+;; Generated from org/plan.org by lein tangle: edit the chapter, not this file.
+(ns cortex.plan-test
+  (:require [clojure.edn :as edn]
+            [clojure.test :refer [deftest is testing]]
+            [cortex.body :as body]
+            [cortex.drops :as drops]
+            [cortex.physics-tab :as physics-tab]
+            [cortex.plan :as plan]
+            [cortex.segment :as segment]
+            [cortex.sim :as sim]
+            [cortex.util :as util])
+  (:import (com.jme3.bullet.control RigidBodyControl)
+           (com.jme3.scene Node)))
+
+(def ^:private creatures
+  "name -> [how it is made, path]"
+  (array-map
+   "worm" [:markers "assets/Models/test-creature/worm.blend"]
+   "hand" [:markers "assets/Models/test-creature/hand.blend"]
+   "worm-eyes" [:markers "assets/Models/test-creature/worm-eyes.blend"]
+   "quadruped" [:markers "test/fixtures/designer/quadruped.blend"]
+   "humanoid" [:markers "test/fixtures/humanoid/humanoid.blend"]
+   "stranger-hand" [:markers "test/fixtures/strangers/hand.blend"]
+   "stranger-worm-eye" [:markers "test/fixtures/strangers/worm-eye.blend"]
+   "physics" [:physics-tab "test/fixtures/blend/b45/physics.blend"]
+   "ragdoll" [:physics-tab "test/fixtures/physics-sim/ragdoll.blend"]))
+
+(defn- fresh
+  "Creature `name`, loaded and placed as the pinned drops place it (its
+  lowest point 1 m above the floor), not yet built."
+  ^Node [name]
+  (let [[how path] (creatures name)
+        c (util/load-blender-model path)]
+    (when (= :markers how)
+      (let [[lo] (drops/extent c)]
+        (.move c 0 (float (- 1.0 (double lo))) 0)))
+    c))
+
+(defn- built
+  "Creature `name` built the usual way (`:usual`), or from its plan
+  after the plan went through text (`:from-text`)."
+  ^Node [name way]
+  (let [[how] (creatures name)
+        c (fresh name)
+        tab? (= :physics-tab how)]
+    (case way
+      :usual (if tab? (physics-tab/physics-body! c) (body/body! c))
+      :from-text (plan/build! c (edn/read-string
+                                 (pr-str (plan/plan c {:physics-tab? tab?})))))))
+
+(defn- drop-text
+  "Every segment's observation at each of `steps` steps of `creature`'s
+  fall onto the floor the pinned drops use, as text."
+  [^Node creature tab? steps]
+  (let [s (sim/simulation creature (cond-> {:observe #{:segments}}
+                                     (not tab?) (assoc :floor {:height 0 :friction 1.0})))]
+    (try
+      (apply str (repeatedly steps #(pr-str (into (sorted-map) (:segments (sim/step! s))))))
+      (finally (sim/destroy! s)))))
+
+(deftest a-plan-is-data
+  (doseq [name (keys creatures)
+          :let [tab? (= :physics-tab (first (creatures name)))
+                c (fresh name)
+                p (plan/plan c {:physics-tab? tab?})]]
+    (testing name
+      (is (= p (edn/read-string (pr-str p))) "the plan reads back equal")
+      (is (not-any? #(instance? Float %) (tree-seq coll? seq p)) "no Float in the plan")
+      (is (every? #(nil? (.getControl ^com.jme3.scene.Spatial % RigidBodyControl))
+                  (util/node-seq c))
+          "planning made no rigid body")
+      (is (pos? (count (:segments p))))
+      (is (= (count (:segments p)) (count (set (map :id (:segments p))))) "segment ids are unique"))))
+
+(deftest a-plan-through-text-builds-the-same-creature
+  (doseq [name (keys creatures)
+          :let [tab? (= :physics-tab (first (creatures name)))]]
+    (testing name
+      (is (= (drop-text (built name :usual) tab? 120)
+             (drop-text (built name :from-text) tab? 120))))))
+
+(deftest the-plan-is-what-was-built
+  (let [c (body/body! (fresh "worm-eyes"))
+        {:keys [plan built]} (segment/record c)
+        r (body/report c)]
+    (is (= (map :name (:joints plan)) (map :name (:joints r))))
+    (is (= (count (:segments plan)) (count (:segments built)) (count (:segments r))))
+    (is (= (mapv :name (:eyes plan)) (mapv :name (:eyes r))))
+    (is (every? #(identical? (:control %) (.getControl ^com.jme3.scene.Spatial (:geom %) RigidBodyControl))
+                (:segments built)))))
+
+(deftest a-plan-from-another-creature-is-refused-by-name
+  (let [p (plan/plan (fresh "worm"))
+        hand (fresh "hand")
+        e (try (plan/build! hand p) nil (catch clojure.lang.ExceptionInfo e e))]
+    (is (some? e))
+    (is (re-find #"the plan's segment .* is not where the plan says" (ex-message e)))))
