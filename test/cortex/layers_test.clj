@@ -34,6 +34,62 @@
                   loaded)
         (str "requiring cortex.sim loaded " (sort loaded)))))
 
+(def ^:private layers
+  "The library's namespaces, lowest first."
+  ["cortex.engine" "cortex.engine-contract" "cortex.mass" "cortex.sense"
+   "cortex.projection" "cortex.util" "cortex.world"
+   "cortex.blender.file" "cortex.blender.math" "cortex.blender.mesh"
+   "cortex.blender.rigid-body" "cortex.blender.scene" "cortex.blender.jme" "cortex.blender"
+   "cortex.segment" "cortex.nearest" "cortex.joint" "cortex.vision"
+   "cortex.rigid-body" "cortex.constraint" "cortex.plan" "cortex.body" "cortex.physics-tab"
+   "cortex.proprioception" "cortex.muscle" "cortex.touch" "cortex.sim"
+   "cortex.render" "cortex.sight" "cortex.demo" "cortex.test.body" "cortex.rollout"
+   "cortex.main"])
+
+(def ^:private late-reaches
+  "The requiring-resolves that reach up, on purpose: [namespace target]."
+  #{["cortex.util" "cortex.blender"] ["cortex.sim" "cortex.sight"] ["cortex.rollout" nil]})
+
+(defn- ns-form
+  [^java.io.File file]
+  (binding [*read-eval* false]
+    (with-open [r (java.io.PushbackReader. (clojure.java.io/reader file))]
+      (read r))))
+
+(defn- library-files []
+  (for [dir ["src" "engine/jbullet/src" "engine/native/src"]
+        ^java.io.File f (file-seq (java.io.File. ^String dir))
+        :when (str/ends-with? (.getName f) ".clj")]
+    f))
+
+(defn- cortex-requires
+  [form]
+  (for [[k & specs] (drop 2 form) :when (and (seq? (list* k specs)) (= :require k))
+        spec specs
+        :let [n (str (if (sequential? spec) (first spec) spec))]
+        :when (str/starts-with? n "cortex")]
+    n))
+
+(deftest every-namespace-requires-only-lower-layers
+  (let [place (zipmap layers (range))]
+    (doseq [f (library-files)
+            :let [form (ns-form f)
+                  me (str (second form))]]
+      (is (contains? place me) (str me " (" f ") has no place in the layers"))
+      (doseq [r (cortex-requires form)]
+        (is (< (long (place r Long/MAX_VALUE)) (long (place me -1)))
+            (str me " requires " r ", which is not below it"))))))
+
+(deftest reaches-up-are-only-the-deliberate-ones
+  (doseq [f (library-files)
+          :let [text (slurp f)
+                me (str (second (ns-form f)))]
+          [_ target] (re-seq #"requiring-resolve\s+'?([\w.-]*)" text)
+          :let [target-ns (when (str/starts-with? target "cortex") target)]]
+    (is (contains? late-reaches [me target-ns])
+        (str me " reaches up to " (or target-ns target) " with requiring-resolve"))))
+
+
 (defn- required
   "The namespaces the ns form at the head of `file` requires."
   [^java.io.File file]
