@@ -40,7 +40,7 @@
    "cortex.projection" "cortex.util" "cortex.world"
    "cortex.blender.file" "cortex.blender.math" "cortex.blender.mesh"
    "cortex.blender.rigid-body" "cortex.blender.scene" "cortex.blender.jme" "cortex.blender"
-   "cortex.segment" "cortex.nearest" "cortex.joint" "cortex.vision"
+   "cortex.shapes" "cortex.segment" "cortex.nearest" "cortex.joint" "cortex.vision"
    "cortex.rigid-body" "cortex.constraint" "cortex.plan" "cortex.body" "cortex.physics-tab"
    "cortex.proprioception" "cortex.muscle" "cortex.touch" "cortex.sim"
    "cortex.render" "cortex.sight" "cortex.demo" "cortex.test.body" "cortex.rollout"
