@@ -16,6 +16,7 @@
             [cortex.muscle :as muscle]
             [cortex.projection :as projection]
             [cortex.proprioception :as p]
+            [cortex.segment :as segment]
             [cortex.touch :as touch]
             [cortex.util :as util]
             [cortex.world :as world])
@@ -222,8 +223,7 @@
       :sensors sensors
       :muscles (into {} (for [s sensors] [(:name s) (muscle/muscle s)]))
       :segments (mapv (fn [[n ^Geometry g rb]]
-                        (let [plan (.getUserData g "cortex.body/mass")]
-                          [n rb (when (:rotation plan) plan)]))
+                        [n rb (segment/mass-offset g)])
                       segs)
       :controls (vec (for [^Geometry geom (body/segments root)
                            :let [c (.getControl geom RigidBodyControl)]

@@ -9,7 +9,9 @@
   `eye-spec`, `frustum`, `field-of-view`, `eye-pose`, `eye-rotation`,
   `eyes`, `default-eye`."
   (:require [clojure.string :as str]
-            [cortex.body :as body]
+            [cortex.joint :as joint]
+            [cortex.nearest :as nearest]
+            [cortex.segment :as segment]
             [cortex.sense :as sense]
             [cortex.util :as util])
   (:import (com.jme3.bullet.control RigidBodyControl)
@@ -65,7 +67,7 @@
 
 (defn- read-eye-property
   [eye-name text]
-  (let [value (try (body/read-description "eye" text)
+  (let [value (try (joint/read-description "eye" text)
                    (catch clojure.lang.ExceptionInfo e
                      (bad-eye eye-name (ex-message e) {:kind :bad-eye :text text})))]
     (when-not (map? value)
@@ -177,7 +179,7 @@
        {:width (- (double right) (double left)) :height (- (double top) (double bottom))}
        {:x (angle left right) :y (angle bottom top)}))))
 
-(def ^:private fmt body/fmt-length)
+(def ^:private fmt nearest/fmt-length)
 
 (defn- nearest!
   "The segment that carries eye `marker`, measured; an ex-info when two
@@ -185,12 +187,12 @@
   farther than its own longest side."
   [index tolerance ^Spatial marker]
   (let [eye-name (.getName marker)
-        measured (try (body/nearest-segments index marker tolerance 1 "eye")
+        measured (try (nearest/nearest-segments index marker tolerance 1 "eye")
                       (catch clojure.lang.ExceptionInfo e
                         (bad-eye eye-name "no segment is near it; place it on the segment that carries it"
                                  {:kind :far-eye :found (:found (ex-data e))})))
         [a b] measured
-        longest (double (peek (body/segment-sides (:geom a))))
+        longest (double (peek (nearest/segment-sides (:geom a))))
         distances (into {} (map (juxt :name :distance)) measured)]
     (when b
       (bad-eye eye-name (str "it is about equally near " (:name a) " (" (fmt (:distance a))
@@ -207,66 +209,94 @@
 
 (defn- vec3-of [^Vector3f v] [(.x v) (.y v) (.z v)])
 
-(defn- eye-record
-  [index tolerance ^Spatial marker]
-  (let [spec (eye-spec marker)
-        {:keys [^Geometry geom name distance]} (nearest! index tolerance marker)
-        ^RigidBodyControl control (.getControl geom RigidBodyControl)
-        body-rotation (.getPhysicsRotation control)
-        inverse (.inverse body-rotation)]
-    {:name (:name spec) :spec spec :segment name :geom geom :control control
-     :distance distance
-     :offset (.mult inverse (.subtract (.getWorldTranslation marker)
-                                       (.getPhysicsLocation control)))
-     :turn (.mult inverse (.getWorldRotation marker))}))
+(defn- in-creature
+  [^Node creature f]
+  (try (f)
+       (catch clojure.lang.ExceptionInfo e
+         (throw (ex-info (str "creature " (pr-str (.getName creature)) ", " (ex-message e))
+                         (assoc (ex-data e) :creature (.getName creature)) e)))))
 
-(defn- eye-report
-  [{:keys [name spec segment distance]} ^Spatial marker]
+(defn plan-eyes
+  "What each eye of `creature` (the children of its \"eyes\" node) will
+  be, as plan data: {:name :spec (see `eye-spec`) :segment (its
+  segment's Blender name) :segment-id (`id-of` that segment's Geometry)
+  :distance :position :rotation (the eye's place in the world, jME
+  axes)}, each found in `index` (see cortex.nearest/index-of), the
+  segments the creature will have, with the ambiguity window
+  `tolerance`. Throws an ex-info naming the eye for a bad description,
+  a segment too far, two segments about equally near, or two eyes of
+  one name."
+  [^Node creature index tolerance id-of]
+  (let [planned (mapv (fn [^Spatial m]
+                        (in-creature
+                         creature
+                         #(let [spec (eye-spec m)
+                                {:keys [geom name distance]} (nearest! index tolerance m)]
+                            {:name (:name spec) :spec (segment/plain spec) :segment name
+                             :segment-id (id-of geom) :distance (double distance)
+                             :position (segment/vector-data (.getWorldTranslation m))
+                             :rotation (segment/quaternion-data (.getWorldRotation m))})))
+                      (eyes creature))
+        twice (sort (for [[n k] (frequencies (map :name planned)) :when (> k 1)] n))]
+    (when (seq twice)
+      (throw (ex-info (str "creature " (pr-str (.getName creature)) ", eyes share the names "
+                           (pr-str (vec twice)) "; rename them in Blender so that each can be seen")
+                      {:kind :duplicate-eye :names (vec twice) :creature (.getName creature)})))
+    planned))
+
+(defn eye-report
+  "What `report` says of planned eye `e` (see `plan-eyes`)."
+  [{:keys [name spec segment distance position]}]
   (let [{:keys [kind projection resolution near far]} spec
         fov (field-of-view spec)]
     (cond-> {:name name :kind kind :segment segment :distance distance
              :resolution resolution :near near :far far
-             :position (vec3-of (util/jme-to-blender (.getWorldTranslation marker)))}
+             :position (segment/vector-data (util/jme-to-blender (util/vec3 position)))}
       (= projection :orthographic) (assoc :size [(:width fov) (:height fov)])
       (= projection :perspective) (assoc :fov [(:x fov) (:y fov)]))))
 
+(defn build-eyes
+  "The records of the planned eyes `planned` (see `plan-eyes`), each
+  fixed to the rigid body of its segment: `built-of` gives a segment
+  id's {:geom :control}. A record is {:name :spec :segment :geom
+  :control :distance :offset :turn}: the eye's place and rotation in
+  the body's frame."
+  [planned built-of]
+  (mapv (fn [{:keys [name spec segment segment-id distance position rotation]}]
+          (let [{:keys [geom ^RigidBodyControl control]} (built-of segment-id)
+                inverse (.inverse (.getPhysicsRotation control))]
+            {:name name :spec spec :segment segment :geom geom :control control
+             :distance distance
+             :offset (.mult inverse (.subtract (util/vec3 position) (.getPhysicsLocation control)))
+             :turn (.mult inverse (segment/quaternion rotation))}))
+        planned))
+
 (defn eyes!
   "Fix each eye of `creature` (the children of its \"eyes\" node) to its
-  nearest segment. Call after the segments are solid and joined
-  (cortex.body/body! does). `opts`: :tolerance, as for body!. Throws an
-  ex-info naming the eye for a bad description, a segment too far, two
-  segments about equally near, or two eyes of one name. Returns the
-  creature."
+  nearest segment, after the segments are solid (cortex.body/body!
+  does it as part of the creature's plan). `opts`: :tolerance, as for
+  body!. Errors as `plan-eyes`. Returns the creature."
   ([creature] (eyes! creature {}))
   ([^Node creature opts]
    (.updateGeometricState creature)
-   (let [index (body/segment-index creature)
-         tolerance (double (or (:tolerance opts) (body/tolerance index)))
-         markers (vec (eyes creature))
-         label (str "creature " (pr-str (.getName creature)) ", ")
-         records (mapv (fn [^Spatial m]
-                         (try (eye-record index tolerance m)
-                              (catch clojure.lang.ExceptionInfo e
-                                (throw (ex-info (str label (ex-message e))
-                                                (assoc (ex-data e) :creature (.getName creature))
-                                                e)))))
-                       markers)
-         twice (sort (for [[n k] (frequencies (map :name records)) :when (> k 1)] n))]
-     (when (seq twice)
-       (throw (ex-info (str label "eyes share the names " (pr-str (vec twice))
-                            "; rename them in Blender so that each can be seen")
-                       {:kind :duplicate-eye :names (vec twice)})))
-     (.setUserData creature "cortex.vision"
-                   {:eyes records :report (mapv eye-report records markers)})
-     creature)))
+   (let [index (nearest/segment-index creature)
+         tolerance (double (or (:tolerance opts) (nearest/tolerance index)))
+         planned (plan-eyes creature index tolerance segment/segment-name)
+         by-name (into {} (for [{:keys [geom]} (:items index)]
+                            [(segment/segment-name geom)
+                             {:geom geom :control (.getControl ^Geometry geom RigidBodyControl)}]))
+         r (segment/record creature)]
+     (segment/record! creature (-> r
+                                   (assoc-in [:plan :eyes] planned)
+                                   (assoc-in [:built :eyes] (build-eyes planned by-name)))))))
 
 (defn eye-records
-  "The eyes `eyes!` fixed on `creature`, in order: maps of :name, :spec
-  (see `eye-spec`), :segment (its name), :geom, :control (its rigid
-  body), :offset and :turn (the eye's place and rotation in the body's
-  frame). Empty for a creature without eyes."
+  "The eyes fixed on `creature`, in order: maps of :name, :spec (see
+  `eye-spec`), :segment (its name), :geom, :control (its rigid body),
+  :offset and :turn (the eye's place and rotation in the body's frame).
+  Empty for a creature without eyes."
   [^Node creature]
-  (:eyes (.getUserData creature "cortex.vision")))
+  (get-in (segment/record creature) [:built :eyes]))
 
 (def ^:private camera-turn
   "From an eye's axes to a jME camera's (which looks along its local +Z,

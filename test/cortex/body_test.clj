@@ -407,11 +407,11 @@
         (is (< (Math/abs (- (hang text quarter-about-x) (double xy))) 0.05) "swung about Blender's Z")))))
 
 (deftest wide-cones-keep-their-twist-in-the-middle
-  (let [[turn limits] (#'body/cone-limits 1.48 1.48 0.0)
+  (let [[turn limits] (#'cortex.joint/cone-limits 1.48 1.48 0.0)
         x (.mult ^Matrix3f turn Vector3f/UNIT_Y)]
     (if (< (double engine/six-dof-safe-middle) 1.48)
       (do (is (= [1.48 1.0E-4 1.48] limits))
           (is (< (.distance x Vector3f/UNIT_X) 1e-6) "the engine's middle axis is the twist's"))
       (is (= [1.0E-4 1.48 1.48] limits))))
   (testing "a cone whose narrower swing is safe in the middle keeps it there"
-    (is (= [0.3 0.6 0.6] (second (#'body/cone-limits 0.6 0.6 0.3))))))
+    (is (= [0.3 0.6 0.6] (second (#'cortex.joint/cone-limits 0.6 0.6 0.3))))))

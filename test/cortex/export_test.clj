@@ -8,7 +8,7 @@
             [cortex.drops :as drops]
             [cortex.export :as ex]
             [cortex.muscle :as muscle]
-            [cortex.plan-shim :as shim]
+            [cortex.plan :as plan]
             [cortex.sim :as sim]
             [cortex.util :as util])
   (:import (java.nio.file Files)
@@ -35,9 +35,16 @@
                 " or run .ci/run, which makes target/python from scripts/export/requirements.txt)")))
 
 (defn- placed
-  "`fixture` loaded, placed 1 m above y = 0 and built."
+  "[creature plan] of `fixture`: loaded, placed with its lowest point
+  1 m above y = 0 (as cortex.drops/place! places it), planned and
+  built."
   [fixture]
-  (doto (util/load-blender-model (fixtures fixture)) drops/place!))
+  (let [c (util/load-blender-model (fixtures fixture))
+        [lo] (drops/extent c)]
+    (.move c 0 (float (- 1.0 (double lo))) 0)
+    (let [p (plan/plan c)]
+      (body/body! c)
+      [c p])))
 
 (defn- close? [a b tol]
   (if (sequential? a)
@@ -46,8 +53,8 @@
 
 (deftest the-muscles-are-cortex-s
   (doseq [f ["hand" "quadruped" "humanoid"]
-          :let [c (placed f)
-                mine (ex/muscles (shim/plan c))]
+          :let [[c p] (placed f)
+                mine (ex/muscles p)]
           [n {:keys [strength kp kd type]}] (muscle/muscles c)]
     (testing (str f " " n)
       (is (close? (:strength (mine n)) strength 1e-4))
@@ -189,8 +196,7 @@
   (if-let [py (python)]
     (let [dir (str (Files/createTempDirectory "cortex-export" (make-array FileAttribute 0)))
           runs (vec (for [f (sort (keys fixtures))]
-                      (let [c (placed f)
-                            plan (shim/plan c)]
+                      (let [[c plan] (placed f)]
                         {:f f :plan plan :entry (manifest-entry f plan dir)
                          :cortex (cortex-drop c plan)})))
           manifest (str (io/file dir "manifest.json"))

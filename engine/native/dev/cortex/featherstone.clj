@@ -88,7 +88,7 @@
 (defn- hinge-axis
   "A hinge record's axis in the world (jME axes), unit length."
   ^Vector3f [{:keys [description rotation]}]
-  (let [^Vector3f a (#'body/axis-vector (get description :axis Vector3f/UNIT_X))]
+  (let [^Vector3f a (#'cortex.joint/axis-vector (get description :axis Vector3f/UNIT_X))]
     (.mult (quat rotation) (util/blender-to-jme (.normalize a)))))
 
 (defn- place!
@@ -236,7 +236,7 @@
                             (.add (.getTranslation tb) (.mult qb pb)))
              past (case (:type joint)
                     :hinge (let [[lo hi] (:limit d)
-                                 ^Vector3f axis (#'body/axis-vector (get d :axis Vector3f/UNIT_X))
+                                 ^Vector3f axis (#'cortex.joint/axis-vector (get d :axis Vector3f/UNIT_X))
                                  axis (util/blender-to-jme (.normalize axis))
                                  ;; the twist of rel about the axis
                                  s (+ (* (.getX rel) (.x axis)) (* (.getY rel) (.y axis))

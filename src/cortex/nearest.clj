@@ -1,0 +1,383 @@
+;; Generated from org/body.org by lein tangle: edit the chapter, not this file.
+(ns cortex.nearest
+  "Which segments a joint (or an eye) is nearest to, measured, and the
+  doubts and warnings that follow from where joints and segments are.
+  Reads only the scene graph: no Bullet object is needed or made.
+
+  Entry points: `joints` (the joint markers), `segment-index`,
+  `index-of`, `nearest-segments`, `targets-near`, `joint-targets`,
+  `tolerance`, `segment-sides`, `fmt-length`, `joint-doubts`,
+  `duplicate-doubts`, `naming-doubts`, `overlap-warnings`,
+  `limit-warnings`."
+  (:require [clojure.string :as str]
+            [cortex.projection :as projection]
+            [cortex.segment :as segment :refer [segments segment-name]]
+            [cortex.sense :as sense]
+            [cortex.util :as util])
+  (:import (com.jme3.bounding BoundingBox)
+           (com.jme3.bullet.control RigidBodyControl)
+           (com.jme3.collision CollisionResults)
+           (com.jme3.math Vector3f)
+           (com.jme3.scene Geometry Node Spatial)))
+
+(set! *warn-on-reflection* true)
+
+(def ^{:doc "The children of the creature's \"joints\" node: one empty
+  per joint."
+       :arglists '([creature])}
+  joints
+  (sense/sense-nodes "joints"))
+
+(defn physical?
+  [^Spatial s]
+  (some? (.getControl s RigidBodyControl)))
+
+(defn- corners
+  "The lowest and highest corners, [x y z] each, of `geom`'s world bound."
+  [^Geometry geom]
+  (let [b (.getWorldBound geom)
+        c (.getCenter b)
+        [ex ey ez] (if (instance? BoundingBox b)
+                     [(.getXExtent ^BoundingBox b) (.getYExtent ^BoundingBox b)
+                      (.getZExtent ^BoundingBox b)]
+                     (repeat 3 (.getRadius ^com.jme3.bounding.BoundingSphere b)))]
+    [[(- (.x c) ex) (- (.y c) ey) (- (.z c) ez)]
+     [(+ (.x c) ex) (+ (.y c) ey) (+ (.z c) ez)]]))
+
+(def ^:private max-cells-per-segment
+  "A segment whose bound covers more grid cells than this is checked
+  for every joint instead of being put in the grid."
+  64)
+
+(defn- cell-range
+  "The grid cells, as [i j k], that the box from `lo` to `hi` covers."
+  [cell lo hi]
+  (let [[[i0 j0 k0] [i1 j1 k1]] (for [corner [lo hi]]
+                                  (map #(long (Math/floor (/ (double %) cell))) corner))]
+    (for [i (range i0 (inc i1)) j (range j0 (inc j1)) k (range k0 (inc k1))]
+      [i j k])))
+
+(defn- cell-count
+  "How many cells the box from `lo` to `hi` covers, counted in doubles:
+  a box far out or huge (a damaged file's) covers more than a long
+  holds."
+  ^double [cell lo hi]
+  (reduce * 1.0 (map #(inc (- (Math/floor (/ (double %2) cell))
+                              (Math/floor (/ (double %1) cell))))
+                     lo hi)))
+
+(defn- gridded?
+  "Whether the box from `lo` to `hi` goes in the grid: it covers at most
+  `most` cells, numbered by whole numbers that a long holds (a box
+  a hundred thousand billion cells out, or with no finite corners, is
+  kept aside and checked every time instead)."
+  [cell lo hi most]
+  (and (<= (cell-count cell lo hi) (double most))
+       (every? #(< (Math/abs (Math/floor (/ (double %) cell))) 1e14) (concat lo hi))))
+
+(defn index-of
+  "The segments `geoms` indexed by where they are: each one's world
+  bounds, and a grid of cells the size of a typical segment listing the
+  segments that reach into each cell. The joint search asks the index
+  for the segments near a point instead of testing every segment of the
+  creature, which keeps building a body of n segments close to linear
+  in n."
+  [geoms]
+  (let [items (vec (for [g geoms]
+                     (let [[lo hi] (corners g)] {:geom g :lo lo :hi hi})))
+        sizes (sort (for [{:keys [lo hi]} items] (apply max (map - hi lo))))
+        cell (max 1e-9 (if (seq sizes) (nth sizes (quot (count sizes) 2)) 1.0))
+        {big false small true} (group-by #(let [{:keys [lo hi]} (items %)]
+                                            (gridded? cell lo hi max-cells-per-segment))
+                                         (range (count items)))
+        grid (reduce (fn [grid i]
+                       (let [{:keys [lo hi]} (items i)]
+                         (reduce #(update %1 %2 (fnil conj []) i) grid (cell-range cell lo hi))))
+                     {} small)]
+    {:items items :cell cell :grid grid :big (vec big)
+     :lo (if (seq items) (apply map min (map :lo items)) [0 0 0])
+     :hi (if (seq items) (apply map max (map :hi items)) [0 0 0])}))
+
+(defn segment-index
+  "The physical segments of `parts` indexed (see `index-of`)."
+  [^Node parts]
+  (index-of (filter physical? (segments parts))))
+
+(defn- overlaps?
+  [lo hi lo' hi']
+  (every? true? (map #(and (<= %1 %4) (<= %3 %2)) lo hi lo' hi')))
+
+(defn- nearby
+  "The items of `index` whose bounds meet the box from `lo` to `hi`."
+  [{:keys [items cell grid big]} lo hi]
+  (let [candidates (if-not (gridded? cell lo hi (count items))
+                     (range (count items))
+                     (distinct (concat (mapcat grid (cell-range cell lo hi)) big)))]
+    (for [i (sort candidates)
+          :let [item (items i)]
+          :when (overlaps? lo hi (:lo item) (:hi item))]
+      item)))
+
+(defn- touching
+  "The physical segments in `index` whose triangles meet a cube of
+  half-width `radius` centred on `center`."
+  [index ^Vector3f center radius]
+  (let [c [(.x center) (.y center) (.z center)]
+        cube (BoundingBox. center (float radius) (float radius) (float radius))]
+    (for [{:keys [^Geometry geom]} (nearby index (map #(- % radius) c) (map #(+ % radius) c))
+          :when (pos? (.collideWith geom cube (CollisionResults.)))]
+      geom)))
+
+(defn- reach
+  "How far from `center` the furthest corner of the indexed segments'
+  bounds is: once the cube is that big it holds everything there is."
+  [{:keys [lo hi]} ^Vector3f center]
+  (let [c [(.x center) (.y center) (.z center)]]
+    (Math/sqrt (reduce + (map #(let [d (max (Math/abs (double (- %1 %2))) (Math/abs (double (- %1 %3))))] (* d d))
+                              c lo hi)))))
+
+(defn- joint-frame-position
+  "Where `target` sits as seen from `joint`: its offset in the joint's
+  own frame, in Blender's axes."
+  ^Vector3f [^Spatial joint ^Spatial target]
+  (util/jme-to-blender
+   (.mult (.inverse (.getWorldRotation joint))
+          (.subtract (.getWorldTranslation target) (.getWorldTranslation joint)))))
+
+(defn- touches?
+  [^Geometry geom ^Vector3f center r]
+  (pos? (.collideWith geom (BoundingBox. center (float r) (float r) (float r))
+                      (CollisionResults.))))
+
+(defn- reach-of
+  "The half-width of the smallest cube centred on `center` that touches
+  `geom`'s triangles, to a millionth of itself (or after 40 halvings),
+  knowing that one of half-width `hi` does."
+  [geom center hi]
+  (loop [lo 0.0 hi (double hi) i 0]
+    (if (or (= i 40) (<= (- hi lo) (* 1e-6 hi)))
+      hi
+      (let [mid (/ (+ lo hi) 2)]
+        (if (touches? geom center mid)
+          (recur lo mid (inc i))
+          (recur mid hi (inc i)))))))
+
+(defn nearest-segments
+  "The physical segments of `index` (see `segment-index`) nearest to
+  `joint`, as maps of :geom, :name (see `segment-name`) and :distance
+  (the half-width of the smallest cube centred on the joint that touches
+  the segment), nearest first, ties by name: the two nearest and every
+  other segment within `window` of the second. When even a cube holding
+  the whole creature finds fewer than two, an error names the joint.
+  With `need` and `what` (an eye, say, needs one segment), the `need`
+  nearest and every other within `window` of the last of them, the
+  error naming the marker as a `what`."
+  ([index joint window] (nearest-segments index joint window 2 "joint"))
+  ([index ^Spatial joint window need what]
+   (let [need (long need)
+         center (.getWorldTranslation joint)
+         limit (* 2 (max 0.01 (reach index center)))
+         r (loop [r 0.01]
+             (let [found (touching index center r)]
+               (cond (>= (count found) need) r
+                     (> r limit)
+                     (throw (ex-info (str what " " (pr-str (.getName joint))
+                                          ": found " (count found)
+                                          " segment(s) near it, a " what " needs "
+                                          (if (= 2 need) "two" need))
+                                     {(keyword what) (.getName joint)
+                                      :found (map segment-name found)}))
+                     :else (recur (* 2 r)))))
+         outer (+ r (double window))
+         measured (sort-by (juxt :distance :name)
+                           (for [g (touching index center outer)]
+                             {:geom g :name (segment-name g)
+                              :distance (reach-of g center outer)}))
+         dn (double (:distance (nth measured (dec need))))]
+     (vec (take-while #(<= (double (:distance %)) (+ dn (double window))) measured)))))
+
+(defn ordered-pair
+  "The two segments `geoms` in the order the joint's frame gives them."
+  [^Spatial joint geoms]
+  (sort-by #(.dot (Vector3f. 1 1 1) (joint-frame-position joint %)) geoms))
+
+(defn targets-near
+  "The two physical segments in `index` (see `segment-index`) closest
+  to `joint`, ordered as `joint-targets` says."
+  [index ^Spatial joint]
+  (ordered-pair joint (map :geom (take 2 (nearest-segments index joint 0.0)))))
+
+(defn joint-targets
+  "The two physical segments of `parts` closest to `joint`, found by
+  growing a cube around the joint from 0.01 by doubling until it touches
+  two of them, then measuring how near each is. They are ordered by
+  where they lie in the joint's frame (in Blender's axes): the one with
+  the smaller x + y + z first. Call after `physical!`. When even a cube
+  holding the whole creature finds fewer than two, the error names the
+  joint. Doubts about the pair are `joints!`'s business."
+  [^Node parts ^Spatial joint]
+  (.updateGeometricState parts)
+  (targets-near (segment-index parts) joint))
+
+(defn tolerance
+  "The indexed creature's ambiguity window: a third segment within this
+  of a joint's second nearest (or, for an eye, a second within this of
+  its nearest) makes the pair doubtful. A tenth of the median segment
+  size."
+  [index]
+  (* 0.1 (double (:cell index))))
+
+(defn segment-sides
+  "The sides of `geom`'s mesh bounds in its own axes, at its world
+  scale, shortest first: how thick, wide and long the segment is,
+  however it is turned."
+  [^Geometry geom]
+  (let [b (.getBound (.getMesh geom))
+        ^Vector3f s (.getWorldScale geom)
+        [ex ey ez] (if (instance? BoundingBox b)
+                     [(.getXExtent ^BoundingBox b) (.getYExtent ^BoundingBox b)
+                      (.getZExtent ^BoundingBox b)]
+                     (repeat 3 (.getRadius ^com.jme3.bounding.BoundingSphere b)))]
+    (vec (sort (map #(* 2.0 (Math/abs (double %1)) (double %2)) [(.x s) (.y s) (.z s)] [ex ey ez])))))
+
+(defn fmt-length
+  "`x`, a length, as text: three decimals, or more for a small one, so
+  that a creature a hundredth of the size reads three figures too."
+  [x]
+  (let [x (double x)
+        places (if (or (zero? x) (not (Double/isFinite x)))
+                 3
+                 (max 3 (- 2 (long (Math/floor (Math/log10 (Math/abs x)))))))]
+    (format (str "%." places "f") x)))
+
+(def ^:private fmt fmt-length)
+
+(defn- distances-text
+  [measured]
+  (str/join ", " (for [{:keys [name distance]} measured]
+                   (str name " " (fmt distance)))))
+
+(defn joint-doubts
+  "The doubts about joint empty `joint-name` given its `measured` nearest
+  segments (see `nearest-segments`) and the creature's `tolerance` (the
+  ambiguity window): maps of :kind (:ambiguous-joint or :far-joint),
+  :joint, :segments, :distances, :tolerance, for a far joint :allowed
+  (half of each segment's thinnest side), and a :message saying what to
+  change."
+  [joint-name measured tolerance]
+  (let [[a b & more] measured
+        allowed (into {} (for [{:keys [name geom]} [a b]]
+                           [name (* 0.5 (double (first (segment-sides geom))))]))
+        outside (filter #(> (double (:distance %)) (double (allowed (:name %)))) [a b])
+        base {:joint joint-name :tolerance tolerance
+              :distances (into {} (map (juxt :name :distance)) measured)}]
+    (cond-> []
+      (seq more)
+      (conj (assoc base :kind :ambiguous-joint
+                   :segments (mapv :name measured)
+                   :message (str "joint " (pr-str joint-name) " is about equally near "
+                                 (count measured) " segments (" (distances-text measured)
+                                 "; the tolerance is " (fmt tolerance) "), so which two it joins"
+                                 " cannot be told; move the empty into the gap between the two"
+                                 " it should join, with every other segment farther away")))
+      (seq outside)
+      (conj (assoc base :kind :far-joint
+                   :segments [(:name a) (:name b)]
+                   :allowed allowed
+                   :message (str "joint " (pr-str joint-name) " is " (fmt (:distance a))
+                                 " from " (:name a) " and " (fmt (:distance b)) " from "
+                                 (:name b) ", more than half the thinnest side of "
+                                 (str/join " and of " (for [{:keys [name]} outside]
+                                                        (str name " (" (fmt (allowed name)) ")")))
+                                 ": it lies outside the two it joins;"
+                                 " move the empty into the gap where the two meet"))))))
+
+(defn duplicate-doubts
+  "A doubt for each pair of segments that more than one joint joins,
+  given `pairs`: [joint-name [segment-name segment-name]] in order."
+  [pairs]
+  (for [[pair names] (group-by (comp set second) pairs)
+        :when (> (count names) 1)
+        :let [joints (mapv first names)]]
+    {:kind :duplicate-joint :joints joints :segments (vec (sort pair))
+     :message (str "joints " (str/join " and " (map pr-str joints)) " both join "
+                   (str/join " and " (sort pair))
+                   "; delete one, or move it into the gap it belongs to")}))
+
+(defn- like-joints?
+  [^String name]
+  (let [n (-> name str/lower-case str/trim (str/replace #"\.\d+$" ""))]
+    (<= (long (util/edit-distance n "joints")) 1)))
+
+(defn naming-doubts
+  "Doubts and warnings about how `creature` names its joints: a node
+  named nearly, but not exactly, \"joints\" when none is; objects with a
+  `joint` property that are not under the joints node."
+  [^Node creature]
+  (let [marker-parent (.getChild creature "joints")
+        near (when-not marker-parent
+               (first (filter #(like-joints? (.getName ^Spatial %))
+                              (rest (util/node-seq creature)))))]
+    (concat
+     (when near
+       [{:kind :misnamed-joints :object (.getName ^Spatial near)
+         :message (str "there is no node named \"joints\", but there is "
+                       (pr-str (.getName ^Spatial near))
+                       "; rename it to joints (exactly, in lower case) so that cortex"
+                       " finds the joints under it")}])
+     (for [^Spatial s (rest (util/node-seq creature))
+           :when (some? (.getUserData s "joint"))
+           :let [p (.getParent s)]
+           :when (not (or (and marker-parent (identical? p marker-parent))
+                          (and near (identical? p near))))]
+       {:kind :stray-joint :object (.getName s) :warning? true
+        :message (str "object " (pr-str (.getName s)) " has a joint property but is not"
+                      " under the joints node, so it joins nothing; parent it to joints"
+                      " or remove the property")}))))
+
+(defn- shrunk-bound
+  ^BoundingBox [{:keys [lo hi]}]
+  (let [c (map #(/ (+ (double %1) (double %2)) 2) lo hi)
+        e (map #(* 0.499 (- (double %2) (double %1))) lo hi)
+        [cx cy cz] c [ex ey ez] e]
+    (BoundingBox. (Vector3f. cx cy cz) (float ex) (float ey) (float ez))))
+
+(defn- meets? [^Geometry g ^BoundingBox b]
+  (pos? (.collideWith g b (CollisionResults.))))
+
+(defn overlap-warnings
+  "Warnings for the segments of `index` that overlap at rest though no
+  joint joins them; `joined` is a set of #{geom geom} pairs."
+  [{:keys [items] :as index} joined]
+  (distinct
+   (for [a items
+         b (nearby index (:lo a) (:hi a))
+         :let [ga (:geom a) gb (:geom b)
+               na (segment-name ga) nb (segment-name gb)]
+         :when (neg? (compare na nb))
+         :when (not (contains? joined #{ga gb}))
+         :when (and (meets? ga (shrunk-bound b)) (meets? gb (shrunk-bound a)))]
+     {:kind :overlap :segments [na nb] :warning? true
+      :message (str "segments " na " and " nb " overlap where they start, and no joint"
+                    " joins them: Bullet will push them apart on the first step;"
+                    " move them apart or join them")})))
+
+(defn limit-warnings
+  "Warnings for the hinges of `joints` (maps of :name and :description,
+  as a plan holds them) built outside their limits by more than
+  projection lets be (cortex.projection/slack): a hinge reads 0 as
+  built, so one whose limits leave out 0 is turned into them at the
+  first step, whatever the designer drew."
+  [joints]
+  (let [trigger (double (first (projection/slack :hinge)))]
+    (for [{:keys [name description]} joints
+          :when (= :hinge (:type description))
+          :let [[lo hi] (:limit description)
+                off (max (- (double lo) trigger) (- (- (double hi)) trigger) 0.0)]
+          :when (pos? off)]
+      {:kind :built-outside-limits :joint name :warning? true
+       :message (str "joint " (pr-str name) " is built " (format "%.3f" (+ off trigger))
+                     " rad outside its limits " (pr-str (:limit description))
+                     ": at the first step it is turned to within "
+                     trigger " rad of them (see org/projection.org);"
+                     " build the creature in a pose within its limits, or widen them")})))

@@ -1,0 +1,257 @@
+;; Generated from org/plan.org by lein tangle: edit the chapter, not this file.
+(ns cortex.plan
+  "A creature as data: `plan` decides, from the scene graph alone, every
+  segment, joint and eye a body will have, as plain EDN data; `build!`
+  makes the rigid bodies, joints and eyes a plan says. No Bullet object
+  is made by `plan`, and `build!` decides nothing.
+
+  Entry points: `plan`, `build!`, `plan-parts` (part of a plan, as
+  `cortex.body/physical!` and `joints!` make), `version`."
+  (:require [clojure.string :as str]
+            [cortex.joint :as joint]
+            [cortex.nearest :as nearest]
+            [cortex.segment :as segment]
+            [cortex.vision :as vision])
+  (:import (com.jme3.bullet.control RigidBodyControl)
+           (com.jme3.scene Geometry Node Spatial)
+           (java.util IdentityHashMap)
+           (java.util.logging Logger)))
+
+(set! *warn-on-reflection* true)
+
+(def version
+  "The plan's format: a plan says it as :plan/version."
+  1)
+
+(defn- path-of
+  "The child indices from `creature` down to `s`."
+  [^Node creature ^Spatial s]
+  (loop [^Spatial s s path ()]
+    (if (identical? s creature)
+      (vec path)
+      (let [p (.getParent s)]
+        (recur p (cons (long (.getChildIndex p s)) path))))))
+
+(defn- at-path
+  "The Spatial at `path` below `creature`, or nil."
+  ^Spatial [^Node creature path]
+  (reduce (fn [^Spatial s i]
+            (if (and (instance? Node s) (integer? i) (< -1 (long i) (.getQuantity ^Node s)))
+              (.getChild ^Node s (int i))
+              (reduced nil)))
+          creature path))
+
+(defn- ids
+  "A unique id for each of `geoms`: its segment name, or, where several
+  share one, name/geometry-name (and #2, #3... after that)."
+  [geoms]
+  (let [counts (frequencies (map segment/segment-name geoms))]
+    (loop [[^Geometry g & more] geoms seen #{} out []]
+      (if-not g
+        out
+        (let [n (segment/segment-name g)
+              base (if (= 1 (counts n)) n (str n "/" (.getName g)))
+              id (loop [k 2 id base] (if (seen id) (recur (inc k) (str base "#" k)) id))]
+          (recur more (conj seen id) (conj out id)))))))
+
+(defn- plan-segments
+  "The plan of each of `geoms` (with `ids`): a segment that already has
+  a rigid body is recorded as kept."
+  [^Node creature geoms ids opts]
+  (mapv (fn [^Geometry g id]
+          (merge {:id id :path (path-of creature g)}
+                 (if (.getControl g RigidBodyControl)
+                   {:name (segment/segment-name g) :kept? true}
+                   (assoc (segment/in-creature creature #(segment/plan-segment g opts))
+                          :kept? false))))
+        geoms ids))
+
+(defn- measure-joint
+  "Where joint empty `marker` is and which segments it is nearest."
+  [index tol ^Spatial marker]
+  (segment/check-placement! "joint" marker)
+  (let [measured (nearest/nearest-segments index marker tol)
+        pair (vec (nearest/ordered-pair marker (map :geom (take 2 measured))))]
+    {:marker marker :name (.getName marker) :measured measured :geoms pair
+     :segments (mapv segment/segment-name pair)}))
+
+(defn- doubts-error
+  [^Node creature doubts]
+  (ex-info (str (segment/label creature) ": " (count doubts)
+                (if (= 1 (count doubts)) " doubt" " doubts")
+                " about its joints:\n"
+                (str/join "\n" (map #(str "- " (:message %)) doubts))
+                "\n(to build it anyway, (body! creature {:strict? false}))")
+           {:creature (.getName creature) :doubts doubts}))
+
+(defn- plan-joints
+  "{:joints :doubts :warnings} for the joints of `creature`, found in
+  `index` with the ambiguity window `tol`; `id-of` names a Geometry's
+  segment. With :strict? any doubt is an error listing them all."
+  [^Node creature index tol id-of {:keys [strict?]}]
+  (let [found (mapv #(segment/in-creature creature (fn [] (measure-joint index tol %)))
+                    (nearest/joints creature))
+        naming (nearest/naming-doubts creature)
+        doubts (vec (concat (remove :warning? naming)
+                            (mapcat #(nearest/joint-doubts (:name %) (:measured %) tol) found)
+                            (nearest/duplicate-doubts (map (juxt :name :segments) found))))]
+    (when (and strict? (seq doubts))
+      (throw (doubts-error creature doubts)))
+    (let [joints (mapv (fn [{:keys [^Spatial marker name measured geoms]}]
+                         (let [d (segment/in-creature creature #(joint/joint-description marker))]
+                           {:name name :kind :marker :type (:type d)
+                            :segments (mapv id-of geoms)
+                            :description (joint/description-data d)
+                            :pivot (segment/vector-data (.getWorldTranslation marker))
+                            :rotation (segment/quaternion-data (.getWorldRotation marker))
+                            :distances (into {} (for [{n :name dd :distance} (take 2 measured)]
+                                                  [n (double dd)]))}))
+                       found)
+          joined (set (map #(set (:geoms %)) found))]
+      {:joints joints
+       :doubts doubts
+       :warnings (vec (concat (map #(assoc % :relaxed? true) doubts)
+                              (filter :warning? naming)
+                              (nearest/overlap-warnings index joined)
+                              (nearest/limit-warnings joints)))})))
+
+(defn- identity-lookup
+  "A function from each of `ks` (by identity) to its `vs`."
+  [ks vs]
+  (let [m (IdentityHashMap.)]
+    (doseq [[k v] (map vector ks vs)] (.put m k v))
+    (fn [k] (.get m k))))
+
+(defn plan-parts
+  "The plan of `creature` (see `plan`) for `parts`, a set of :segments,
+  :joints and :eyes. Without :segments, the plan holds the segments
+  that already have a rigid body (kept), and the joints and eyes are
+  found among them, as `cortex.body/joints!` does."
+  [^Node creature opts parts]
+  (let [opts (merge segment/default-options opts)]
+    (.updateGeometricState creature)
+    (let [all (vec (segment/segments creature))
+          geoms (if (:segments parts) all (filterv nearest/physical? all))
+          ids (ids geoms)
+          id-of (identity-lookup geoms ids)
+          segments (plan-segments creature geoms ids opts)
+          index (nearest/index-of geoms)
+          tol (double (or (:tolerance opts) (nearest/tolerance index)))
+          js (when (:joints parts) (plan-joints creature index tol id-of opts))
+          eyes (when (and (:eyes parts) (instance? Node (.getChild creature "eyes")))
+                 (vision/plan-eyes creature index tol id-of))]
+      (segment/plain
+       {:plan/version version
+        :creature (.getName creature)
+        :parts (vec (sort parts))
+        :options opts
+        :tolerance tol
+        :segments segments
+        :joints (:joints js [])
+        :eyes (or eyes [])
+        :doubts (:doubts js [])
+        :warnings (:warnings js [])}))))
+
+(defn plan
+  "What `body!` would make of `creature` (a Node loaded from Blender, or
+  built in code the same way), as plain data: every segment, joint and
+  eye, and the doubts and warnings, decided from the scene graph alone
+  (see the chapter for the shape). `opts` as cortex.body/body!'s (see
+  cortex.segment/default-options). Errors are those body! gives,
+  naming the creature and the segment, joint or eye at fault; with
+  :strict? (the default) a doubt about any joint is one."
+  ([creature] (plan creature {}))
+  ([creature opts] (plan-parts creature opts #{:segments :joints :eyes})))
+
+(defn- segment-at
+  "The Geometry planned segment `p` names in `creature`."
+  ^Geometry [^Node creature {:keys [id name path]}]
+  (let [s (at-path creature path)]
+    (if (and (instance? Geometry s) (= name (segment/segment-name s)))
+      s
+      (throw (ex-info (str (segment/label creature) ": the plan's segment " (pr-str id)
+                           " is not where the plan says (" (pr-str path) " holds "
+                           (if s (pr-str (.getName s)) "nothing")
+                           "); make the plan from this creature")
+                      {:creature (.getName creature) :segment id :path path})))))
+
+(defn- joint-record
+  "What is kept of joint `j` of a plan, made as `physics-joint` between
+  built segments `a` and `b`."
+  [j physics-joint a b]
+  (let [{:keys [name type description pivot rotation distances]} j]
+    {:name name :type type :description description
+     :physics-joint physics-joint :geoms [(:geom a) (:geom b)]
+     :segments [(segment/segment-name (:geom a)) (segment/segment-name (:geom b))]
+     :pivot pivot :rotation rotation
+     :body-rotations (mapv #(segment/quaternion-data
+                             (.getPhysicsRotation ^RigidBodyControl (:control %)))
+                           [a b])
+     :distances distances}))
+
+(defn- log-warnings!
+  [^Node creature warnings]
+  (let [logger (Logger/getLogger "cortex.body")]
+    (doseq [{:keys [message]} warnings]
+      (.warning logger (str (segment/label creature) ": " message)))))
+
+(defn- merged
+  "The record of a creature that held `old`, after building `plan`,
+  whose pieces are `built`: the plan's parts (see `plan-parts`) replace
+  what the record held of them; segments add up."
+  [old plan built]
+  (let [parts (set (:parts plan))
+        old-plan (:plan old)
+        old-built (:built old)
+        old-ids (set (map :id (:segments old-plan)))
+        ;; a segment kept now was planned before: keep the earlier plan of it
+        segments (vec (concat (:segments old-plan)
+                              (remove #(old-ids (:id %)) (:segments plan))))
+        new-built (into {} (map (juxt :id identity)) (:segments built))
+        old-built-ids (set (map :id (:segments old-built)))
+        pick (fn [part ks] (if (or (parts part) (nil? old-plan)) (select-keys plan ks) (select-keys old-plan ks)))]
+    {:plan (merge (dissoc plan :joints :doubts :warnings :tolerance :eyes)
+                  {:segments segments}
+                  (pick :joints [:joints :doubts :warnings :tolerance])
+                  (pick :eyes [:eyes]))
+     :built {:segments (vec (concat (map #(new-built (:id %) %) (:segments old-built))
+                                    (remove #(old-built-ids (:id %)) (:segments built))))
+             :joints (if (or (parts :joints) (nil? old-built)) (:joints built) (:joints old-built))
+             :eyes (if (or (parts :eyes) (nil? old-built)) (:eyes built) (:eyes old-built))}}))
+
+(defn build!
+  "Make `creature` physical as `plan` (see `plan`) says: a rigid body for
+  each planned segment (a kept one keeps its own), the joints between
+  them, the eyes on them; log the plan's warnings; keep the plan and
+  what was built on the creature's Node. Returns the creature."
+  [^Node creature plan]
+  (.updateGeometricState creature)
+  (let [built-segments
+        (mapv (fn [{:keys [id kept?] :as p}]
+                (let [g (segment-at creature p)]
+                  {:id id :geom g
+                   :control (if kept?
+                              (or (.getControl g RigidBodyControl)
+                                  (throw (ex-info (str (segment/label creature) ": the plan keeps"
+                                                       " the rigid body of segment " (pr-str id)
+                                                       ", which has none; make the plan again")
+                                                  {:creature (.getName creature) :segment id})))
+                              (segment/in-creature creature #(segment/build-segment! g p)))}))
+              (:segments plan))
+        by-id (into {} (map (juxt :id identity)) built-segments)
+        built-of (fn [j id]
+                   (or (by-id id)
+                       (throw (ex-info (str (segment/label creature) ", joint " (pr-str (:name j))
+                                            ": the plan has no segment " (pr-str id))
+                                       {:creature (.getName creature) :joint (:name j)}))))
+        joints (mapv (fn [j]
+                       (let [[a b] (map #(built-of j %) (:segments j))]
+                         (joint-record j (segment/in-creature
+                                          creature
+                                          #(joint/build-joint! (:control a) (:control b) j))
+                                       a b)))
+                     (:joints plan))
+        eyes (vision/build-eyes (:eyes plan) by-id)]
+    (log-warnings! creature (:warnings plan))
+    (segment/record! creature (merged (segment/record creature) plan
+                                      {:segments built-segments :joints joints :eyes eyes}))))
