@@ -10,6 +10,8 @@
             [clojure.string :as str]
             [clojure.tools.cli :as cli]
             [cortex.body :as body]
+            [cortex.export :as export]
+            [cortex.plan]
             [cortex.render :as render]
             [cortex.demo :as demo]
             [cortex.sight :as sight]
@@ -127,6 +129,8 @@
    [nil "--headless" "draw offscreen even when there is a display"]
    [nil "--window" "open a window (needs a display)"]
    [nil "--report" "with a FILE.blend: print what body! builds of it, and stop"]
+   [nil "--mjcf OUT.xml" "with a FILE.blend: write it as MuJoCo's MJCF, meshes beside it, and stop (see org/export.org)"]
+   [nil "--urdf OUT.urdf" "with a FILE.blend: write it as URDF, meshes beside it, and stop (with --mjcf too)"]
    [nil "--eyes" "record what the creature's eyes see under the world (the worm with eyes unless a FILE is given)"]
    ["-h" "--help" "say how to use lein run"]])
 
@@ -152,7 +156,7 @@
   a file, :file."
   [args display?]
   (let [{:keys [options errors summary arguments]} (cli/parse-opts args cli-options)
-        {:keys [creature seconds out resolution headless window help report eyes]} options
+        {:keys [creature seconds out resolution headless window help report eyes mjcf urdf]} options
         [file & extra] arguments
         creature (cond file (str/replace (.getName (io/file file)) #"\.blend$" "")
                        (and eyes (= creature "worm")) "worm-eyes"
@@ -163,6 +167,8 @@
       (seq extra) {:action :error :message (str "one creature file at a time, not " (pr-str (vec arguments)))}
       (and report (not file)) {:action :error :message "--report needs a FILE.blend"}
       report {:action :report :file file}
+      (and (or mjcf urdf) (not file)) {:action :error :message "--mjcf and --urdf need a FILE.blend"}
+      (or mjcf urdf) {:action :export :file file :mjcf mjcf :urdf urdf}
       (and headless window) {:action :error :message "--headless and --window contradict each other"}
       (and window (not display?))
       {:action :error
@@ -291,6 +297,11 @@
                    :help (do (println message) 0)
                    :error (do (binding [*out* *err*] (println message)) 2)
                    :report (do (println (report-text (body/report (body/body! (util/load-blender-model (:file p)) {:strict? false})))) 0)
+                   :export (do (doseq [f (export/write! (cortex.plan/plan (util/load-blender-model (:file p))
+                                                                           {:strict? false})
+                                                        (:mjcf p) (:urdf p))]
+                                 (println "wrote" f))
+                               0)
                    :window (do (show-window! p) 0)
                    :offscreen (do (show-offscreen! p) 0))
                  (catch clojure.lang.ExceptionInfo e

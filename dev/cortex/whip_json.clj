@@ -1,10 +1,10 @@
 ;; Generated from org/physics-trust.org by lein tangle: edit the chapter, not this file.
-(ns cortex.export
+(ns cortex.whip-json
   "A creature placed and built as the drop test does it, written as JSON
   for scripts/compare/quadruped_whip.py (the physics-trust chapter).
 
-  Entry point: `-main` (lein run -m cortex.export FILE.blend OUT.json;
-  lein run -m cortex.export speeds FILE.blend OUT.csv [friction]: every
+  Entry point: `-main` (lein run -m cortex.whip-json FILE.blend OUT.json;
+  lein run -m cortex.whip-json speeds FILE.blend OUT.csv [friction]: every
   segment's speed at every step of the drop's first 3 s)."
   (:require [clojure.java.io :as io]
             [clojure.string :as str]
@@ -29,8 +29,8 @@
                           "\n"))))))
 
 (defn -main
-  "lein run -m cortex.export FILE.blend OUT.json
-  lein run -m cortex.export speeds FILE.blend OUT.csv [friction]"
+  "lein run -m cortex.whip-json FILE.blend OUT.json
+  lein run -m cortex.whip-json speeds FILE.blend OUT.csv [friction]"
   [& [a b c d]]
   (let [[out text] (if (= "speeds" a)
                      (let [friction (Double/parseDouble (or d "0.5"))]

@@ -1,0 +1,277 @@
+#!/usr/bin/env python3
+"""Measure cortex's exported creatures in MuJoCo and PyBullet (org/export.org).
+
+    $CORTEX_PYTHON scripts/export/check_export.py MANIFEST.json OUT.json
+
+A Python script, outside cortex's Clojure code; cortex's test
+(cortex.export-test) writes MANIFEST.json, runs this once for every
+fixture, and asserts on OUT.json.  The script measures, it does not
+judge: every figure it reports is compared with cortex's by the test.
+
+MANIFEST.json: {"fixtures": [{"name", "mjcf" (path), "urdf" (path or null),
+"seconds" (drop length), "joints": [{"name", "type", "segments": [a, b],
+"axis" (hinge: Z-up world), "frame" (cone: 3x3 rows, Z-up world, columns the
+engine's axes), "dofs": [{"joint" (MuJoCo joint), "actuator", "range"}]}],
+"pairs": [[a, b], ...] (joined segments), "base": {"link", "pos", "quat"
+[x y z w]} (where the URDF's root link is), "camera": {"name", "width",
+"height"} or null}]}.
+
+OUT.json, by fixture name:
+- "mujoco": {"error": text or null, "warnings": [text]}.
+- "bodies": {segment: {"mass", "com" (world), "inertia" (3x3 world, about
+  the centre of mass)}} as MuJoCo compiled them.
+- "drives": one per (hinge degree of freedom, end of its range): gravity
+  off, the dof's position servo told to go 1 rad past that end (so it
+  pushes at the muscle's strength), the others told to hold 0, contacts
+  off, 5 s; then, at the step of the last 2 s where the dof is farthest
+  towards that end (where the limit stops it: a pushed joint may bounce
+  off its limit, the hand's first finger joints for seconds), the joint's
+  angles as cortex reads them, measured from the two bodies'
+  orientations (not from MuJoCo's joint coordinates): a hinge's turn of
+  its second segment about its axis, a cone's three engine angles (the
+  Euler angles of the inverse relative rotation in the engine's frame,
+  m^-1 = Rx Ry Rz, see cortex.projection/euler-angles).
+- "drop": MuJoCo with a floor at z = 0 (friction 0: MuJoCo takes the larger
+  of two, so each geom's own friction rules), "seconds" long: the centre of
+  mass height every step, and the fastest body speed over the last 0.5 s.
+- "urdf": check_urdf's exit code and output; PyBullet's link masses; and the
+  same drop in PyBullet (1/60 s step in four substeps, floor friction 1:
+  Bullet multiplies).
+- "render": the camera's segmentation (a body name per pixel, "" for
+  none) from MuJoCo's renderer (MUJOCO_GL=egl), or {"skipped": why}.
+"""
+
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+import mujoco
+
+
+def euler_inverse(m):
+    """cortex.projection/euler-angles of the relative rotation matrix m
+    already in the engine's frame: angles of m^-1 = Rx Ry Rz."""
+    return [math.atan2(-m[2][1], m[2][2]),
+            math.asin(max(-1.0, min(1.0, m[2][0]))),
+            math.atan2(-m[1][0], m[0][0])]
+
+
+def hinge_angle(d, axis):
+    """The turn of rotation matrix d about the unit axis (quaternion twist)."""
+    q = np.zeros(4)
+    mujoco.mju_mat2Quat(q, np.asarray(d, float).flatten())
+    w, v = q[0], q[1:]
+    a = 2 * math.atan2(float(np.dot(v, axis)), w)
+    return (a + math.pi) % (2 * math.pi) - math.pi
+
+
+def relative(m, d, d0, a, b):
+    """Rotation of body b relative to body a since the start, in the
+    world's rest axes: (Ra Ra0^T)^T (Rb Rb0^T)."""
+    ia, ib = m.body(a).id, m.body(b).id
+    ra = d.xmat[ia].reshape(3, 3) @ d0[ia].reshape(3, 3).T
+    rb = d.xmat[ib].reshape(3, 3) @ d0[ib].reshape(3, 3).T
+    return ra.T @ rb
+
+
+def joint_angles(m, d, x0, j):
+    a, b = j["segments"]
+    r = relative(m, d, x0, a, b)
+    if j["type"] == "hinge":
+        return [hinge_angle(r, np.asarray(j["axis"]))]
+    g = np.asarray(j["frame"], float)
+    return euler_inverse(g.T @ r @ g)
+
+
+def add_floor(xml_path, friction):
+    """A copy of the MJCF beside it with a floor plane at z = 0."""
+    text = open(xml_path).read()
+    text = text.replace("<worldbody>", '<worldbody>\n    <geom name="floor" type="plane" size="0 0 1"'
+                        f' friction="{friction} 0.005 0.0001"/>', 1)
+    fd, path = tempfile.mkstemp(suffix=".xml", dir=os.path.dirname(os.path.abspath(xml_path)))
+    with os.fdopen(fd, "w") as fh:
+        fh.write(text)
+    return path
+
+
+def load(path):
+    warnings = []
+    mujoco.set_mju_user_warning(lambda s: warnings.append(s))
+    try:
+        return mujoco.MjModel.from_xml_path(path), None, warnings
+    except Exception as e:  # what MuJoCo's compiler says
+        return None, str(e), warnings
+
+
+def bodies(m):
+    d = mujoco.MjData(m)
+    mujoco.mj_forward(m, d)
+    out = {}
+    for i in range(1, m.nbody):
+        r = d.ximat[i].reshape(3, 3)
+        out[m.body(i).name] = {"mass": float(m.body_mass[i]), "com": d.xipos[i].tolist(),
+                               "inertia": (r @ np.diag(m.body_inertia[i]) @ r.T).tolist()}
+    return out
+
+
+def drives(m, fixture):
+    out = []
+    for j in fixture["joints"]:
+        for dof in j["dofs"]:
+            if dof.get("actuator") is None:
+                continue
+            lo, hi = dof["range"]
+            for end, target in (("low", lo - 1.0), ("high", hi + 1.0)):
+                d = mujoco.MjData(m)
+                m.opt.gravity[:] = 0
+                # the joint alone: no segment may stop another on the way
+                m.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_CONTACT
+                mujoco.mj_forward(m, d)
+                x0 = d.xmat.copy()
+                d.ctrl[:] = 0
+                d.ctrl[m.actuator(dof["actuator"]).id] = target
+                adr = m.jnt_qposadr[m.joint(dof["joint"]).id]
+                sign = -1 if end == "low" else 1
+                best = None
+                for i in range(300):
+                    mujoco.mj_step(m, d)
+                    if i >= 180 and (best is None or sign * d.qpos[adr] > sign * best[0]):
+                        best = (float(d.qpos[adr]), joint_angles(m, d, x0, j))
+                out.append({"joint": j["name"], "dof": dof["joint"], "end": end,
+                            "qpos": best[0], "angles": best[1]})
+    return out
+
+
+def mj_drop(path, seconds):
+    floored = add_floor(path, 0)
+    m, err, _ = load(floored)
+    os.remove(floored)
+    if m is None:
+        return {"error": err}
+    d = mujoco.MjData(m)
+    mujoco.mj_forward(m, d)
+    mass = m.body_mass[1:].sum()
+    heights, speeds = [], []
+    prev = d.xipos.copy()
+    steps = int(round(seconds / m.opt.timestep))
+    for i in range(steps):
+        mujoco.mj_step(m, d)
+        heights.append(float((m.body_mass[1:] * d.xipos[1:, 2]).sum() / mass))
+        speeds.append(float(np.linalg.norm(d.xipos[1:] - prev[1:], axis=1).max() / m.opt.timestep))
+        prev[:] = d.xipos
+    tail = int(round(0.5 / m.opt.timestep))
+    return {"heights": heights, "rest_speed": max(speeds[-tail:]), "step": m.opt.timestep}
+
+
+def urdf(fixture):
+    path = fixture["urdf"]
+    out = {}
+    tool = shutil.which("check_urdf")
+    if tool:
+        p = subprocess.run([tool, path], capture_output=True, text=True)
+        out["check_urdf"] = {"code": p.returncode, "output": p.stdout + p.stderr}
+    else:
+        out["check_urdf"] = {"skipped": "check_urdf is not installed (Debian: liburdfdom-tools)"}
+    import pybullet as pb
+    c = pb.connect(pb.DIRECT)
+    try:
+        pb.setGravity(0, 0, -9.81, physicsClientId=c)
+        pb.setTimeStep(1 / 60, physicsClientId=c)
+        # PyBullet's multibodies (Featherstone) at cortex's 1/60 s throw the
+        # four-legged creature about on landing; four substeps hold it
+        pb.setPhysicsEngineParameter(numSubSteps=4, physicsClientId=c)
+        base = fixture["base"]
+        flags = pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_USE_SELF_COLLISION
+        body = pb.loadURDF(path, base["pos"], base["quat"], flags=flags, physicsClientId=c)
+        names = {-1: pb.getBodyInfo(body, physicsClientId=c)[0].decode()}
+        for i in range(pb.getNumJoints(body, physicsClientId=c)):
+            names[i] = pb.getJointInfo(body, i, physicsClientId=c)[12].decode()
+        index = {n: i for i, n in names.items()}
+        out["masses"] = {n: pb.getDynamicsInfo(body, i, physicsClientId=c)[0] for i, n in names.items()}
+        for a, b in fixture["pairs"]:
+            pb.setCollisionFilterPair(body, body, index[a], index[b], 0, physicsClientId=c)
+        # the joints move freely (PyBullet's default velocity motors off)
+        for i in range(pb.getNumJoints(body, physicsClientId=c)):
+            pb.setJointMotorControl2(body, i, pb.VELOCITY_CONTROL, force=0, physicsClientId=c)
+        plane = pb.createCollisionShape(pb.GEOM_PLANE, physicsClientId=c)
+        floor = pb.createMultiBody(0, plane, physicsClientId=c)
+        pb.changeDynamics(floor, -1, lateralFriction=1.0, physicsClientId=c)
+        real = [i for i, n in names.items() if not n.startswith("_")]
+        masses = np.array([out["masses"][names[i]] for i in real])
+
+        def coms():
+            ps = []
+            for i in real:
+                if i == -1:
+                    ps.append(pb.getBasePositionAndOrientation(body, physicsClientId=c)[0])
+                else:
+                    ps.append(pb.getLinkState(body, i, physicsClientId=c)[0])
+            return np.array(ps)
+
+        prev = coms()
+        heights, speeds = [], []
+        for _ in range(int(round(fixture["seconds"] * 60))):
+            pb.stepSimulation(physicsClientId=c)
+            p = coms()
+            heights.append(float((masses * p[:, 2]).sum() / masses.sum()))
+            speeds.append(float(np.linalg.norm(p - prev, axis=1).max() * 60))
+            prev = p
+        out["drop"] = {"heights": heights, "rest_speed": max(speeds[-30:]), "step": 1 / 60}
+    finally:
+        pb.disconnect(c)
+    return out
+
+
+def render(m, cam):
+    os.environ.setdefault("MUJOCO_GL", "egl")
+    try:
+        r = mujoco.Renderer(m, cam["height"], cam["width"])
+    except Exception as e:
+        return {"skipped": f"no GL context for MuJoCo's renderer (MUJOCO_GL={os.environ['MUJOCO_GL']}): {e}"}
+    d = mujoco.MjData(m)
+    mujoco.mj_forward(m, d)
+    r.enable_segmentation_rendering()
+    r.update_scene(d, camera=cam["name"])
+    seg = r.render()
+    r.close()
+    names = []
+    for row in seg:
+        line = []
+        for objid, objtype in row:
+            if objtype == mujoco.mjtObj.mjOBJ_GEOM and objid >= 0:
+                line.append(m.body(m.geom_bodyid[objid]).name)
+            else:
+                line.append("")
+        names.append(line)
+    return {"labels": names}
+
+
+def main():
+    manifest = json.load(open(sys.argv[1]))
+    result = {}
+    for f in manifest["fixtures"]:
+        r = {}
+        m, err, warnings = load(f["mjcf"])
+        r["mujoco"] = {"error": err, "warnings": warnings, "version": mujoco.__version__}
+        if m is not None:
+            r["bodies"] = bodies(m)
+            r["drives"] = drives(m, f)
+            m2, _, _ = load(f["mjcf"])
+            r["drop"] = mj_drop(f["mjcf"], f["seconds"])
+            if f.get("camera"):
+                r["render"] = render(m2, f["camera"])
+        if f.get("urdf"):
+            r["urdf"] = urdf(f)
+        result[f["name"]] = r
+    with open(sys.argv[2], "w") as fh:
+        json.dump(result, fh)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
