@@ -73,10 +73,12 @@
   designer said, and its eyes, when it has an \"eyes\" node, fixed to
   their segments (see cortex.vision/eyes!): `(cortex.plan/plan creature
   opts)`, then `cortex.plan/build!`. `opts` as for `physical!` and
-  `joints!` (see `default-options`). Returns the creature."
+  `joints!` (see `default-options`). A creature's Physics tab is not
+  read (cortex.physics-tab/physics-body! reads it) unless `opts` say
+  :physics-tab? true. Returns the creature."
   ([creature] (body! creature {}))
   ([^Node creature opts]
-   (plan/build! creature (plan/plan creature opts))))
+   (plan/build! creature (plan/plan creature (merge {:physics-tab? false} opts)))))
 
 (defn- build-record
   [^Node creature]

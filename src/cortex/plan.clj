@@ -210,20 +210,21 @@
           js (when (:joints parts) (plan-joints creature index tol id-of opts))
           eyes (when (and (:eyes parts) (instance? Node (.getChild creature "eyes")))
                  (vision/plan-eyes creature index tol id-of))]
-      (segment/plain
-       (cond-> {:plan/version version
-                :creature (.getName creature)
-                :parts (vec (sort (cond-> parts tab? (conj :physics-tab))))
-                :options opts
-                :tolerance tol
-                :segments (into (vec (:bodies tab)) segments)
-                :joints (:joints js [])
-                :eyes (or eyes [])
-                :doubts (:doubts js [])
-                :warnings (into (vec (:warnings js [])) (:warnings tab))}
-         tab? (assoc :constraints (:constraints tab)
-                     :world (:world tab)
-                     :joint-order (:joint-order tab)))))))
+      ;; segments, joints, eyes and constraints are plain data as they
+      ;; are made; what is gathered from elsewhere is made so here
+      (cond-> {:plan/version version
+               :creature (.getName creature)
+               :parts (vec (sort (cond-> parts tab? (conj :physics-tab))))
+               :options (segment/plain opts)
+               :tolerance tol
+               :segments (into (vec (:bodies tab)) segments)
+               :joints (:joints js [])
+               :eyes (or eyes [])
+               :doubts (segment/plain (:doubts js []))
+               :warnings (segment/plain (into (vec (:warnings js [])) (:warnings tab)))}
+        tab? (assoc :constraints (:constraints tab)
+                    :world (segment/plain (:world tab))
+                    :joint-order (vec (:joint-order tab)))))))
 (defn plan
   "What `body!` would make of `creature` (a Node loaded from Blender, or
   built in code the same way), as plain data: every segment, joint and

@@ -155,10 +155,12 @@
                     opts))))
 
 (defn- has-body?
-  "Whether `creature` has been given cortex's body: its plan (see
-  cortex.plan) has its joints."
+  "Whether `creature` has been given its body: its plan (see
+  cortex.plan) has cortex's joints, or the Physics tab's bodies and
+  constraints (cortex.physics-tab/physics-body!, whose plan has no
+  :joints when the creature has no joints empty)."
   [creature]
-  (contains? (set (get-in (segment/record creature) [:plan :parts])) :joints))
+  (boolean (some #{:joints :physics-tab} (get-in (segment/record creature) [:plan :parts]))))
 
 (defn- tab-settings
   "The settings of `creature`'s Physics tab (see

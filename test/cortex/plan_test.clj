@@ -89,6 +89,19 @@
     (is (every? #(identical? (:control %) (.getControl ^com.jme3.scene.Spatial (:geom %) RigidBodyControl))
                 (:segments built)))))
 
+(deftest a-simulated-creature-has-the-joints-its-plan-has
+  (doseq [name ["ragdoll" "physics" "worm-eyes"]
+          :let [tab? (= :physics-tab (first (creatures name)))
+                c (built name :usual)
+                {:keys [plan]} (segment/record c)
+                s (sim/simulation c {:observe #{}})]]
+    (try
+      (is (= (+ (count (:joints plan)) (count (filter :enabled? (:constraints plan))))
+             (count (.getJointList ^com.jme3.bullet.PhysicsSpace (:space s))))
+          (str name ": one joint in the space for each in its plan"))
+      (is (pos? (count (.getJointList ^com.jme3.bullet.PhysicsSpace (:space s)))))
+      (finally (sim/destroy! s)))))
+
 (deftest a-plan-from-another-creature-is-refused-by-name
   (let [p (plan/plan (fresh "worm"))
         hand (fresh "hand")
