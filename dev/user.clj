@@ -80,7 +80,7 @@
   or the path of a .blend file."
   [name-or-file]
   (if (str/ends-with? (str name-or-file) ".blend")
-    ((requiring-resolve 'cortex.util/load-blender-model) name-or-file)
+    ((requiring-resolve 'cortex.blender/load-blender-model) name-or-file)
     ((requiring-resolve 'cortex.main/named-creature) name-or-file)))
 
 (defn- staged

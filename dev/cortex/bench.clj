@@ -11,6 +11,7 @@
             [cortex.blender-bench :as blender-bench]
             [cortex.body :as body]
             [cortex.sim :as sim]
+            [cortex.blender]
             [cortex.util :as util]
             [cortex.world :as world])
   (:import (com.jme3.bounding BoundingBox)

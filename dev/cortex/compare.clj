@@ -13,6 +13,7 @@
             [cortex.engine]
             [cortex.render :as render]
             [cortex.sim :as sim]
+            [cortex.blender]
             [cortex.util :as util])
   (:import (java.lang.management ManagementFactory)
            (com.jme3.scene Node)))

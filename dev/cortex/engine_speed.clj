@@ -12,6 +12,7 @@
             [cortex.body :as body]
             [cortex.engine :as engine]
             [cortex.sim :as sim]
+            [cortex.blender]
             [cortex.util :as util]))
 
 (set! *warn-on-reflection* true)

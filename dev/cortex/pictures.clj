@@ -5,6 +5,7 @@
   (:require [cortex.body :as body]
             [cortex.proprioception :as p]
             [cortex.sim :as sim]
+            [cortex.blender]
             [cortex.util :as util])
   (:import (java.awt BasicStroke Color Font Graphics2D RenderingHints)
            (java.awt.geom AffineTransform Arc2D$Double Line2D$Double Rectangle2D$Double)

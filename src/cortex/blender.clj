@@ -152,3 +152,7 @@
                      (guarded (str model) #(with-open [in (.openStream info)] (.readAllBytes in)))
                      opts))))))
 
+
+;; cortex.util/load-blender-model, the seed's name, is this function
+;; once the reader is loaded (see the utilities chapter)
+(util/install-blend-reader! #'load-blender-model)

@@ -9,6 +9,7 @@
   creature on a lit floor, framed, with shadows), `watch` and `watched`
   (joint gaps and the time it came to rest)."
   (:require [cortex.body :as body]
+            [cortex.blender :as blender]
             [cortex.util :as util]
             [cortex.world :as world])
   (:import (com.jme3.app SimpleApplication)
@@ -33,12 +34,12 @@
 (defn hand
   "The hand, as Blender describes it: a palm and five fingers."
   []
-  (util/load-blender-model hand-path))
+  (blender/load-blender-model hand-path))
 
 (defn worm
   "The worm: two segments and one joint."
   []
-  (util/load-blender-model worm-path))
+  (blender/load-blender-model worm-path))
 
 (def earth-gravity (Vector3f. 0 -9.81 0))
 

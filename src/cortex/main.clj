@@ -15,6 +15,7 @@
             [cortex.render :as render]
             [cortex.demo :as demo]
             [cortex.sight :as sight]
+            [cortex.blender :as blender]
             [cortex.util :as util]
             [cortex.world :as world])
   (:import (com.jme3.app SimpleApplication)
@@ -27,7 +28,7 @@
   "The creatures lein run can show, by name: functions that load them."
   {"worm" demo/worm
    "hand" demo/hand
-   "worm-eyes" #(util/load-blender-model "Models/test-creature/worm-eyes.blend")})
+   "worm-eyes" #(blender/load-blender-model "Models/test-creature/worm-eyes.blend")})
 
 (defn named-creature
   "The creature called `creature-name` (see `creatures`), loaded from
@@ -211,7 +212,7 @@
   "The creature the plan names, loaded; for a file, its report printed
   once it is built."
   [{:keys [creature file]}]
-  (if file (util/load-blender-model file) (named-creature creature)))
+  (if file (blender/load-blender-model file) (named-creature creature)))
 
 (defn- scenery
   "Something for eyes to see, on the floor `drop` under built `creature`,
@@ -296,8 +297,8 @@
                  (case action
                    :help (do (println message) 0)
                    :error (do (binding [*out* *err*] (println message)) 2)
-                   :report (do (println (report-text (body/report (body/body! (util/load-blender-model (:file p)) {:strict? false})))) 0)
-                   :export (do (doseq [f (export/write! (cortex.plan/plan (util/load-blender-model (:file p))
+                   :report (do (println (report-text (body/report (body/body! (blender/load-blender-model (:file p)) {:strict? false})))) 0)
+                   :export (do (doseq [f (export/write! (cortex.plan/plan (blender/load-blender-model (:file p))
                                                                            {:strict? false})
                                                         (:mjcf p) (:urdf p))]
                                  (println "wrote" f))

@@ -17,6 +17,7 @@
             [cortex.engine :as engine]
             [cortex.proprioception :as p]
             [cortex.sim :as sim]
+            [cortex.blender :as blender]
             [cortex.util :as util])
   (:import            (com.jme3.scene Node)
            (java.util Random)
@@ -194,7 +195,7 @@
   built, over its floor. To watch a rollout, show it with sim/world and
   `controller`."
   [{:keys [creature seed start floor observe solver]}]
-  (let [c (doto ^Node (util/load-blender-model creature) (place! seed start) (body/body!))]
+  (let [c (doto ^Node (blender/load-blender-model creature) (place! seed start) (body/body!))]
     (sim/simulation c (cond-> {:floor floor :observe (into #{:joints :segments} observe)}
                         solver (assoc :solver solver)))))
 

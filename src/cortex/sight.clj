@@ -7,10 +7,12 @@
   for a cortex world, the same eyes drawn in the world's own context.
   Loaded only when eyes are asked for.
 
-  Entry points: `open!` (eyes for a simulation, used by cortex.sim),
+  Entry points: `open!` (eyes for a simulation, installed in cortex.sim
+  when this namespace loads),
   `see!`, `close!`, `choose`, `eyes-state` (eyes in a world),
   `eye-image`, `depth-image`, `with-eyes`, `record-with-eyes!`."
   (:require [cortex.render :as render]
+            [cortex.sim :as sim]
             [cortex.util :as util]
             [cortex.vision :as vision])
   (:import (com.jme3.app SimpleApplication)
@@ -422,6 +424,9 @@
   with."
   [{:keys [^JmeContext context]}]
   (.destroy context true))
+
+;; the step loop sees through these (cortex.sim loads no renderer)
+(sim/install-sight! {:open! #'open! :see! #'see! :close! #'close!})
 
 (defn eyes-state
   "Attach to `world` an app state that draws the eyes of `creature`

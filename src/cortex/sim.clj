@@ -191,6 +191,22 @@
    :substeps (long (or (:substeps solver) (:substeps (tab-settings creature)) 1))
    :projection (projection/enabled? space)})
 
+(defonce ^:private sight (atom nil))
+
+(defn install-sight!
+  "Make `hooks`, {:open! :see! :close!}, how a simulation sees through a
+  creature's eyes: cortex.sight installs its own when it is loaded, so
+  that the step loop needs no renderer until eyes are asked for."
+  [hooks]
+  (reset! sight hooks))
+
+(defn- sight-hooks
+  []
+  (or @sight
+      (throw (ex-info (str "seeing through a creature's eyes needs cortex.sight, which is not"
+                           " loaded: (require 'cortex.sight) first")
+                      {}))))
+
 (defn simulation
   "A simulation of `creature` (a creature Node; given its body with
   cortex.body/body! unless it has one) in a new PhysicsSpace, with
@@ -242,7 +258,7 @@
       ;; eyes (vision.org): loaded only when asked for, so that a
       ;; simulation without eyes loads no OpenGL
       :sight (when-let [eyes (:eyes opts)]
-               ((requiring-resolve 'cortex.sight/open!) creature root eyes))})))
+               ((:open! (sight-hooks)) creature root eyes))})))
 
 (defn solver
   "How `sim` steps: {:iterations n :substeps k :projection bool}, the
@@ -306,7 +322,7 @@
      {:time (sim-time sim)}
    (cond-> {:time (sim-time sim)}
      (and sight (contains? parts :eyes))
-     (assoc :eyes (do (sync! sim) ((requiring-resolve 'cortex.sight/see!) sight)))
+     (assoc :eyes (do (sync! sim) ((:see! (sight-hooks)) sight)))
      (contains? parts :joints) (assoc :joints (p/read-joints sensors))
      (contains? parts :segments)
      (assoc :segments (persistent! (reduce (fn [m [n rb offset]] (assoc! m n (segment-state rb offset)))
@@ -354,7 +370,7 @@
 (defn destroy!
   "Free `sim`'s physics space, and its eyes' GL context."
   [{:keys [^PhysicsSpace space sight]}]
-  (when sight ((requiring-resolve 'cortex.sight/close!) sight))
+  (when sight ((:close! (sight-hooks)) sight))
   (.destroy space))
 
 (defn world

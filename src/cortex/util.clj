@@ -4,7 +4,7 @@
   making simple physical shapes, lights, coordinate changes between
   Blender and jMonkeyEngine, and printing from jME's thread.
 
-  Entry points: `load-blender-model` (the reader, loaded lazily),
+  Entry points: `load-blender-model` (the reader's, once it is loaded),
   `asset-manager`, `box`, `sphere`, `nodify`, `node-seq`,
   `blender-to-jme`, `jme-to-blender`, `blender-axes`, `vec3`,
   `finite?`, `edit-distance`, `near-miss` (the key an unknown key
@@ -141,6 +141,14 @@
   (^AssetManager [{:keys [new]}]
    (if new (new-asset-manager) @shared-assets)))
 
+(defonce ^:private blend-reader (atom nil))
+
+(defn install-blend-reader!
+  "Make `f` the function `load-blender-model` hands its arguments to:
+  cortex.blender installs its own when it is loaded."
+  [f]
+  (reset! blend-reader f))
+
 (defn load-blender-model
   "Load a .blend file as a jME Node: `model` is an asset name such as
   \"Models/test-creature/worm.blend\" (under assets/ or on the
@@ -148,12 +156,17 @@
   not given); `opts` a map, {:scene \"Game\"} to load that scene rather
   than the one the file was saved showing. Forms: (model), (model
   opts), (am model), (am model opts). Errors are ex-info naming the
-  file. The reader, cortex.blender, is loaded on the first call."
-  ([model] ((requiring-resolve 'cortex.blender/load-blender-model) model))
-  ([am-or-model model-or-opts]
-   ((requiring-resolve 'cortex.blender/load-blender-model) am-or-model model-or-opts))
-  ([^AssetManager am model opts]
-   ((requiring-resolve 'cortex.blender/load-blender-model) am model opts)))
+  file. This is cortex.blender/load-blender-model, which cortex.blender
+  installs here when it is loaded (see the chapter); before that, an
+  ex-info says to require it."
+  {:arglists '([model] [model opts] [am model] [am model opts])}
+  [& args]
+  (if-let [f @blend-reader]
+    (apply f args)
+    (throw (ex-info (str "cortex.util/load-blender-model needs the .blend reader, which is not"
+                         " loaded: (require 'cortex.blender) first, or call"
+                         " cortex.blender/load-blender-model")
+                    {:args (vec args)}))))
 
 (def ^:private shape-defaults
   {:name "shape"

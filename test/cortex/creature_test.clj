@@ -5,6 +5,7 @@
             [cortex.body :as body]
             [cortex.demo :as demo]
             [cortex.test.body :as tb]
+            [cortex.blender]
             [cortex.util :as util]
             [cortex.world :as world])
   (:import (com.jme3.app.state AbstractAppState)

@@ -10,6 +10,7 @@
             [cortex.muscle :as muscle]
             [cortex.plan :as plan]
             [cortex.sim :as sim]
+            [cortex.blender]
             [cortex.util :as util])
   (:import (java.nio.file Files)
            (java.nio.file.attribute FileAttribute)))

@@ -34,6 +34,25 @@
                   loaded)
         (str "requiring cortex.sim loaded " (sort loaded)))))
 
+(deftest hooks-say-what-to-require
+  (let [form (pr-str
+              '(do (require 'cortex.util 'cortex.body 'cortex.sim)
+                   (defn message [f] (try (f) "no error" (catch Exception e (ex-message e))))
+                   (println (message #(cortex.util/load-blender-model "Models/test-creature/worm-eyes.blend")))
+                   (require 'cortex.blender)
+                   (let [c (cortex.body/body! (cortex.util/load-blender-model
+                                               "Models/test-creature/worm-eyes.blend"))]
+                     (println (count (cortex.body/segments c)))
+                     (println (message #(cortex.sim/simulation c {:eyes true}))))
+                   (shutdown-agents)))
+        {:keys [exit out err]} (sh/sh "java" "-cp" (System/getProperty "java.class.path")
+                                      "clojure.main" "-e" form)
+        [reader segments eyes] (take-last 3 (str/split-lines out))]
+    (is (zero? exit) err)
+    (is (re-find #"needs the \.blend reader.*\(require 'cortex\.blender\)" reader) reader)
+    (is (= "2" segments) "with the reader loaded, the seed's loader loads")
+    (is (re-find #"needs cortex\.sight.*\(require 'cortex\.sight\)" eyes) eyes)))
+
 (def ^:private layers
   "The library's namespaces, lowest first."
   ["cortex.engine" "cortex.engine-contract" "cortex.mass" "cortex.sense"
@@ -48,7 +67,7 @@
 
 (def ^:private late-reaches
   "The requiring-resolves that reach up, on purpose: [namespace target]."
-  #{["cortex.util" "cortex.blender"] ["cortex.sim" "cortex.sight"] ["cortex.rollout" nil]})
+  #{["cortex.rollout" nil]})
 
 (defn- ns-form
   [^java.io.File file]

@@ -4,6 +4,7 @@
             [cortex.body :as body]
             [cortex.main :as main]
             [cortex.render :as render]
+            [cortex.blender]
             [cortex.util :as util])
   (:import (com.jme3.math Vector3f)
            (com.jme3.renderer Camera)

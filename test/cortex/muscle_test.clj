@@ -7,6 +7,7 @@
             [cortex.proprioception :as p]
             [cortex.sim :as sim]
             [cortex.engine :as engine]
+            [cortex.blender]
             [cortex.util :as util])
   (:import (com.jme3.math Quaternion)))
 

@@ -7,6 +7,7 @@
             [cortex.projection :as projection]
             [cortex.proprioception :as p]
             [cortex.sim :as sim]
+            [cortex.blender]
             [cortex.util :as util])
   (:import (com.jme3.math Quaternion)
            (com.jme3.scene Geometry)))

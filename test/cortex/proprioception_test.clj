@@ -4,6 +4,7 @@
             [cortex.body :as body]
             [cortex.joint-fixtures :as f]
             [cortex.proprioception :as p]
+            [cortex.blender]
             [cortex.util :as util])
   (:import (com.jme3.bullet.control RigidBodyControl)
            (com.jme3.math Quaternion Vector3f)

@@ -6,6 +6,7 @@
             [cortex.body :as body]
             [cortex.rollout :as r]
             [cortex.sim :as sim]
+            [cortex.blender]
             [cortex.util :as util])
   (:import (com.jme3.scene Node)
            (java.nio.file Files)

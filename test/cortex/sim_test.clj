@@ -8,6 +8,7 @@
             [cortex.proprioception :as p]
             [cortex.render :as render]
             [cortex.sim :as sim]
+            [cortex.blender]
             [cortex.util :as util]
             [cortex.world :as world])
   (:import (com.jme3.bullet.control RigidBodyControl)

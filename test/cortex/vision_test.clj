@@ -270,8 +270,9 @@
     (is (close? (first (:fov right)) 84.0 1e-9))))
 
 (deftest no-opengl-without-eyes
-  (let [form (pr-str '(do (require '[cortex.body :as body] '[cortex.sim :as sim] '[cortex.util :as util])
-                          (let [s (sim/simulation (body/body! (util/load-blender-model
+  (let [form (pr-str '(do (require '[cortex.blender :as blender] '[cortex.body :as body]
+                                   '[cortex.sim :as sim])
+                          (let [s (sim/simulation (body/body! (blender/load-blender-model
                                                                "Models/test-creature/worm.blend"))
                                                   {:floor 0})]
                             (dotimes [_ 10] (sim/step! s))

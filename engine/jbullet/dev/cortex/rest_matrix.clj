@@ -17,6 +17,7 @@
   CREATURES=quadruped,worm narrows the run, NOSPEED=1 skips the timing."
   (:require [cortex.body :as body]
             [cortex.sim :as sim]
+            [cortex.blender]
             [cortex.util :as util]
             [cortex.drops :refer [extent]]
             [cortex.trust-matrix :as tm]

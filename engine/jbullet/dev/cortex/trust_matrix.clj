@@ -13,6 +13,7 @@
   (:require [cortex.body :as body]
             [cortex.drops :refer [extent overshoot]]
             [cortex.sim :as sim]
+            [cortex.blender]
             [cortex.util :as util]
             [clojure.string :as str])
   (:import (com.jme3.bounding BoundingBox)

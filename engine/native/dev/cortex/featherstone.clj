@@ -10,6 +10,7 @@
   (:require [clojure.string :as str]
             [cortex.body :as body]
             [cortex.drops :as drops]
+            [cortex.blender]
             [cortex.util :as util])
   (:import (com.jme3.bullet MultiBody MultiBodyLink MultiBodySpace PhysicsSpace$BroadphaseType)
            (com.jme3.bullet.collision.shapes BoxCollisionShape CollisionShape)
