@@ -85,15 +85,17 @@
 
 (defn place!
   "Move `creature` (a Node, not yet built) so that its lowest point is
-  1 m above y = 0, and build it; the speed limit of a clean fall from
-  there, sqrt(2 g H) + 1 m/s, H the drop of its highest point."
-  ^double [^Node creature]
-  (let [[lo hi] (extent creature)]
-    ;; moved before its bodies are made: a RigidBodyControl takes its
-    ;; place from its Geometry only when it is attached
-    (.move creature 0 (float (- 1.0 lo)) 0)
-    (body/body! creature)
-    (+ 1.0 (Math/sqrt (* 2 9.81 (+ 1.0 (- hi lo)))))))
+  1 m above y = 0, and build it (with body!'s `opts`); the speed limit
+  of a clean fall from there, sqrt(2 g H) + 1 m/s, H the drop of its
+  highest point."
+  (^double [creature] (place! creature {}))
+  (^double [^Node creature opts]
+   (let [[lo hi] (extent creature)]
+     ;; moved before its bodies are made: a RigidBodyControl takes its
+     ;; place from its Geometry only when it is attached
+     (.move creature 0 (float (- 1.0 lo)) 0)
+     (body/body! creature opts)
+     (+ 1.0 (Math/sqrt (* 2 9.81 (+ 1.0 (- hi lo))))))))
 
 (defn drop!
   "Drop `creature` (a Node, not yet built) with its lowest point 1 m

@@ -91,12 +91,19 @@
 (defn- segment-report
   [^Geometry g planned]
   (let [^RigidBodyControl c (.getControl g RigidBodyControl)
-        points (engine/hull-points (.getCollisionShape c))
+        shape (:shape planned)
+        hull? (or (nil? shape) (= :hull (:type shape)))
+        points (when hull? (engine/hull-points (.getCollisionShape c)))
         {:keys [source centre moments]} (:inertia planned)]
     (cond-> {:name (segment-name g) :mass (double (.getMass c))
-             :hull-points (count points)
-             :hull-volume (if points (engine/hull-volume points) 0.0)
+             :shape (if shape (:type shape) :hull)
+             :volume (if hull?
+                       (if points (engine/hull-volume points) 0.0)
+                       (segment/shape-volume shape))
              :mass-properties source}
+      hull? (assoc :hull-points (count points)
+                   :hull-volume (if points (engine/hull-volume points) 0.0))
+      (= :compound (:type shape)) (assoc :pieces (mapv #(get-in % [:shape :type]) (:children shape)))
       (= :mesh source) (assoc :centre-of-mass (vec3-of (util/jme-to-blender (util/vec3 centre)))
                               :principal-moments (vec moments)))))
 
@@ -111,7 +118,9 @@
 
 (defn report
   "What `body!` built of `creature`, as data: {:creature name, :segments
-  [{:name :mass :hull-points :hull-volume}], :joints [{:name :type :class
+  [{:name :mass :shape (:hull, :box, :sphere, :capsule, :cylinder or
+  :compound, with its :pieces) :volume (the shape's), and for a hull
+  :hull-points :hull-volume}], :joints [{:name :type :class
   :segments [first second] :pivot [x y z] (Blender's world axes)
   :distances {segment distance} :limits {...}}], :warnings [{:kind
   :message ...}], :tolerance (the ambiguity window the doubts used)},

@@ -82,9 +82,11 @@
   [{:keys [creature segments joints warnings tolerance eyes]}]
   (str "creature " creature ": " (count segments) " segments, " (count joints)
        " joints (tolerance " (format "%.3f" (double tolerance)) ")\n\n"
-       (table [[:name "segment"] [:mass "mass"] [:hull-points "hull points"]
-               [:hull-volume "hull volume"]]
-              segments)
+       (table [[:name "segment"] [:mass "mass"] [:shape "shape"] [:volume "volume"]
+               [:hull-points "hull points"]]
+              (for [{:keys [shape pieces] :as s} segments]
+                (cond-> s pieces (assoc :shape (str (name shape) " "
+                                                    (str/join "+" (map name pieces)))))))
        "\n\n"
        (table [[:name "joint"] [:type "type"] [:class "jBullet"] [:first "first"]
                [:second "second"] [:pivot "pivot (Blender)"] [:gap "distances"]

@@ -57,15 +57,34 @@
               id (loop [k 2 id base] (if (seen id) (recur (inc k) (str base "#" k)) id))]
           (recur more (conj seen id) (conj out id)))))))
 
+(defn- tab-shape
+  "The shape the Physics tab gives segment `g` of a creature built with
+  joint markers, as data: its object's rigid body Shape (Blender's
+  rule for its size), when the object has a rigid body, `g` is its only
+  Geometry and the shape is one cortex's segments take (box, sphere,
+  capsule, cylinder, convex hull); else nil."
+  [^Geometry g]
+  (let [node (.getParent g)
+        rb (when (instance? Node node) (rigid-body/rigid-body node))]
+    (when (and rb (identical? g (rigid-body/body-spatial node)))
+      (let [{:keys [shape empty?]} (rigid-body/shape-plan node rb (= "PASSIVE" (:type rb)))]
+        (when (and (not empty?) (#{:box :sphere :capsule :cylinder :hull} (:type shape)))
+          shape)))))
+
 (defn- plan-segments
   "The plan of each of `geoms` (with `ids`): a segment that already has
-  a rigid body is recorded as kept."
+  a rigid body is recorded as kept. Unless `opts` ask for the seed's
+  hulls, a segment whose object has a Physics-tab rigid body takes its
+  Shape (see `tab-shape`)."
   [^Node creature geoms ids opts]
   (mapv (fn [^Geometry g id]
           (merge {:id id :path (path-of creature g)}
                  (if (.getControl g RigidBodyControl)
                    {:name (segment/segment-name g) :kept? true}
-                   (assoc (segment/in-creature creature #(segment/plan-segment g opts))
+                   (assoc (segment/in-creature
+                           creature
+                           #(segment/plan-segment g opts (when (not= :hull (:shapes opts))
+                                                           (tab-shape g))))
                           :kept? false))))
         geoms ids))
 

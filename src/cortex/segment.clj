@@ -11,6 +11,7 @@
   (:require [cortex.engine :as engine]
             [cortex.mass :as mass]
             [cortex.sense :as sense]
+            [cortex.shapes :as shapes]
             [cortex.util :as util])
   (:import (com.jme3.bullet.collision.shapes CompoundCollisionShape HullCollisionShape)
            (com.jme3.bullet.control RigidBodyControl)
@@ -257,6 +258,40 @@
                     (.setLocalRotation geom (.mult (.inverse (.getWorldRotation parent)) rot)))
                 (do (.setLocalTranslation geom pos) (.setLocalRotation geom rot))))))))))
 
+(defn- offset-shape
+  "Shape data `shape`, in the segment's frame, seen from a body at `c`
+  (Vector3f) turned by the inverse of `undo` (Quaternion): a compound
+  whose children are placed p' = undo (p - c), turned undo r."
+  [shape ^Vector3f c ^Quaternion undo]
+  (let [children (if (= :compound (:type shape))
+                   (:children shape)
+                   [{:shape (dissoc shape :position :rotation)
+                     :position (:position shape) :rotation (:rotation shape)}])]
+    {:type :compound
+     :children (vec (for [{s :shape p :position r :rotation} children]
+                      {:shape s
+                       :position (vector-data (.mult undo (.subtract (util/vec3 (or p [0 0 0])) c)))
+                       :rotation (quaternion-data (.mult undo (quaternion (or r [0 0 0 1]))))}))}))
+
+(defn shape-volume
+  "The volume of shape data `shape`: a hull's by the engine, a
+  primitive's by its formula, a compound's the sum of its children's."
+  ^double [shape]
+  (let [{:keys [type half-extents radius height axis points children]} shape
+        pi Math/PI]
+    (double
+     (case type
+       :hull (engine/hull-volume points)
+       :box (let [[x y z] half-extents] (* 8.0 x y z))
+       :sphere (* (/ 4.0 3.0) pi radius radius radius)
+       :capsule (+ (* pi radius radius height) (* (/ 4.0 3.0) pi radius radius radius))
+       :cylinder (let [h (nth half-extents (long (or axis 1)))
+                       r (apply max (keep-indexed #(when (not= %1 (long (or axis 1))) %2) half-extents))]
+                   (* pi r r 2.0 h))
+       :cone (* (/ 1.0 3.0) pi radius radius height)
+       :compound (reduce + (map #(shape-volume (:shape %)) children))
+       0.0))))
+
 (defn- make-body
   "The rigid body control of segment `geom` as its plan `p` says (see
   `plan-segment`): its hull, its mass, its mass properties, and where
@@ -265,22 +300,27 @@
   `offset-control`."
   ^RigidBodyControl [^Geometry geom {:keys [mass inertia shape position rotation]}]
   (let [{:keys [source centre moments]} inertia
-        hull (hull-from-points (map util/vec3 (:points shape)))
+        hull? (= :hull (:type shape))
+        made (if hull?
+               (hull-from-points (map util/vec3 (:points shape)))
+               (shapes/collision-shape shape))
         at (util/vec3 position)
         turn (quaternion rotation)]
     (if (and (= :mesh source) (:rotation inertia))
       (let [c (util/vec3 centre)
             rotation (quaternion (:rotation inertia))
             undo (.inverse rotation)
-            shape (doto (CompoundCollisionShape.)
-                    (.addChildShape hull (.negate (.mult undo c)) (.toRotationMatrix undo)))
+            shape (if hull?
+                    (doto (CompoundCollisionShape.)
+                      (.addChildShape made (.negate (.mult undo c)) (.toRotationMatrix undo)))
+                    (shapes/collision-shape (offset-shape shape c undo)))
             control (offset-control geom shape mass c rotation)]
         (.addControl geom control)
         (.setPhysicsLocation control (.add at (.mult turn c)))
         (.setPhysicsRotation control (.mult turn rotation))
         (set-inertia! control mass moments)
         control)
-      (let [control (RigidBodyControl. hull (float mass))]
+      (let [control (RigidBodyControl. made (float mass))]
         (.addControl geom control)
         (.setPhysicsLocation control at)
         (.setPhysicsRotation control turn)
@@ -323,12 +363,17 @@
                       at rest for 2 s is put to sleep;
   :mass-properties    :mesh (centre of mass and inertia from the
                       segment's triangles) or :box (the seed's: the
-                      origin, and the hull's bounding box)."
+                      origin, and the hull's bounding box);
+  :shapes             :fit (each closed piece of a segment's mesh that
+                      is a box, sphere, capsule or cylinder becomes one,
+                      see the shapes chapter) or :hull (the seed's one
+                      hull for every segment)."
   {:strict? true
    :tolerance nil
    :angular-damping 0.5
    :sleeping-thresholds [0.8 3.0]
-   :mass-properties :mesh})
+   :mass-properties :mesh
+   :shapes :fit})
 
 (defn label [^Node creature] (str "creature " (pr-str (.getName creature))))
 
@@ -357,22 +402,50 @@
           (some too-big? (concat centre moments))
           (fail "its mesh reaches too far from its origin for its mass properties to fit in a float"))))
 
+(defn- shape-property
+  "The segment's `shape` property: :fit, :hull, or nil when it has
+  none; anything else is an error naming the object."
+  [^Geometry geom]
+  (let [v (sense/meta-data geom "shape")]
+    (cond (nil? v) nil
+          (#{"fit" "hull"} v) (keyword v)
+          :else (throw (ex-info (str "object " (pr-str (segment-name geom))
+                                     ": its shape property must be \"fit\" or \"hull\", not "
+                                     (pr-str v))
+                                {:object (segment-name geom) :shape v})))))
+
+(defn shape-choice
+  "The collision shape of segment `geom`, as data: `hull` (the seed's,
+  see `hull-points`) when its `shape` property or else :shapes of
+  `opts` says :hull, or when no piece of its mesh is a primitive (see
+  cortex.shapes/segment-shape); else the primitives its pieces are."
+  [^Geometry geom opts hull]
+  (if (= :hull (or (shape-property geom) (:shapes opts)))
+    hull
+    (let [s (shapes/segment-shape (shapes/triangles geom) {:shapes :fit})]
+      (if (= :hull (:type s)) hull s))))
+
 (defn plan-segment
   "What segment `geom` will be, as plain data: {:name (see
   `segment-name`) :mass :friction :restitution :angular-damping
   :sleeping-thresholds :position :rotation :scale (its world transform)
-  :inertia (see `inertia-plan`) :shape {:type :hull :points [[x y z]
-  ...]}}, the hull in the segment's own axes at its world scale. `opts`
-  as `default-options`. Errors name the segment: a placement or scale
-  that is not finite or leaves no volume, a bad mass, friction or
-  restitution, a mesh with fewer than four distinct vertices."
-  [^Geometry geom opts]
-  (let [{:keys [angular-damping sleeping-thresholds mass-properties]} (merge default-options opts)]
+  :inertia (see `inertia-plan`) :shape}, the shape (see `shape-choice`)
+  in the segment's own axes at its world scale: `given` when not nil
+  (the Physics tab's, for a segment that has one), else as the
+  segment's `shape` property or `opts` say. `opts` as
+  `default-options`. Errors name the segment: a placement or scale that
+  is not finite or leaves no volume, a bad mass, friction, restitution
+  or shape property, a mesh with fewer than four distinct vertices."
+  ([geom opts] (plan-segment geom opts nil))
+  ([^Geometry geom opts given]
+  (let [{:keys [angular-damping sleeping-thresholds mass-properties] :as opts}
+        (merge default-options opts)]
     (check-placement! "segment" geom)
     (let [m (mass geom)
           inertia (if (= :box mass-properties) {:source :box} (inertia-plan geom m))
           _ (check-solid! geom inertia)
-          points (hull-points geom)]
+          points (hull-points geom)
+          hull {:type :hull :points (mapv vector-data points)}]
       {:name (segment-name geom)
        :mass m
        :friction (property geom "friction" 0.5)
@@ -383,7 +456,7 @@
        :rotation (quaternion-data (.getWorldRotation geom))
        :scale (vector-data (.getWorldScale geom))
        :inertia inertia
-       :shape {:type :hull :points (mapv vector-data points)}})))
+       :shape (or given (shape-choice geom opts hull))}))))
 
 (defn build-segment!
   "Give `geom` the rigid body its plan `p` (see `plan-segment`) says.

@@ -545,8 +545,21 @@
     (case (:type shape)
       :hull (doto (HullCollisionShape. (float-array (mapcat identity (:points shape))))
               (.setMargin (float (margin shape))))
-      :box (doto (BoxCollisionShape. (vec3 (:half-extents shape)))
-             (.setMargin (float (margin shape))))
+      :box (if (= :native engine/name)
+             ;; native Bullet's box contacts fail the physics-trust drops:
+             ;; there a box is the hull of its corners (see above)
+             ;; its corners drawn in by the margin, which Bullet adds
+             ;; back around a hull: the outside is the box's, as Bullet's
+             ;; box shape keeps it
+             (let [m (margin shape)
+                   [x y z] (map #(- (double %) m) (:half-extents shape))]
+               (doto (HullCollisionShape.
+                      (float-array (for [sx [-1.0 1.0] sy [-1.0 1.0] sz [-1.0 1.0]
+                                         c [(* sx x) (* sy y) (* sz z)]]
+                                     c)))
+                 (.setMargin (float m))))
+             (doto (BoxCollisionShape. (vec3 (:half-extents shape)))
+               (.setMargin (float (margin shape)))))
       :cylinder (doto (CylinderCollisionShape. (vec3 (:half-extents shape)) (int (:axis shape 1)))
                   (.setMargin (float (margin shape))))
       :sphere (SphereCollisionShape. (float (:radius shape)))

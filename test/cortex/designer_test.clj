@@ -36,11 +36,19 @@
     (is (= [] warnings))
     (is (close? 0.05 tolerance) "a tenth of the median segment size, 0.5")
     (is (= (set (keys want-segments)) (set (map :name segments))))
-    (doseq [{:keys [name mass hull-points hull-volume]} segments
+    (doseq [{:keys [name mass shape volume]} segments
             :let [w (want-segments name)]]
       (is (close? (get w "mass") mass) name)
-      (is (= (get w "vertices") hull-points) name)
-      (is (close? (get w "volume") hull-volume) name))
+      ;; its segments are cubes, scaled: each is a box (see the shapes
+      ;; chapter), whose volume is the mesh's
+      (is (= :box shape) name)
+      (is (close? (get w "volume") volume) name))
+    (let [seed (body/report (body/body! (load-fixture "quadruped.blend") {:shapes :hull}))]
+      (doseq [{:keys [name hull-points hull-volume shape]} (:segments seed)
+              :let [w (want-segments name)]]
+        (is (= :hull shape) name)
+        (is (= (get w "vertices") hull-points) name)
+        (is (close? (get w "volume") hull-volume) name)))
     (is (= (count (get want "joints")) (count joints)))
     (doseq [w (get want "joints")
             :let [j (first (filter #(= (get w "name") (:name %)) joints))]]
@@ -246,7 +254,7 @@
 
 (def ^:private powers
   "How each length-like number of a report scales: the power of the scale."
-  {:tolerance 1 :hull-volume 3 :centre-of-mass 1 :principal-moments 2 :pivot 1
+  {:tolerance 1 :hull-volume 3 :volume 3 :centre-of-mass 1 :principal-moments 2 :pivot 1
    :distances 1 :distance 1 :position 1 :near 1 :far 1 :size 1})
 
 (defn- in-units
@@ -281,7 +289,7 @@
   ([a b tolerance path]
    (cond (map? a) (if (and (map? b) (= (set (keys a)) (set (keys b))))
                     (some #(difference (a %) (b %)
-                                       (if (= :hull-volume %) hull-volume-tolerance tolerance)
+                                       (if (#{:hull-volume :volume} %) hull-volume-tolerance tolerance)
                                        (conj path %))
                           (keys a))
                     [path a b])

@@ -56,7 +56,7 @@
           text (main/report-text (body/report c))
           lines (clojure.string/split-lines text)]
       (is (re-find #"14 segments, 13 joints \(tolerance 0\.050\)" text))
-      (is (some #(re-matches #"torso\s+4\.000\s+8\s+0\.8000\s*" %) lines))
+      (is (some #(re-matches #"torso\s+4\.000\s+box\s+0\.8000\s*" %) lines))
       (is (some #(re-matches #"knee-front-r\s+hinge\s+HingeJoint\s+upper-leg-front-r\s+lower-leg-front-r\s+\[0\.700 -0\.300 0\.515\]\s+\[0\.015 0\.015\].*" %) lines))
       (is (re-find #"no warnings" text))))
   (testing "run offscreen: frames, the report, how it held and settled"
