@@ -7,6 +7,8 @@
             [cortex.body :as body]
             [cortex.drops :as drops]
             [cortex.export :as ex]
+            [cortex.export.geometry :as geo]
+            [cortex.export.model :as model]
             [cortex.muscle :as muscle]
             [cortex.plan :as plan]
             [cortex.sim :as sim]
@@ -67,7 +69,7 @@
 (deftest hulls-are-closed-and-minimal
   (let [corners (vec (for [x [-1 1] y [-1 1] z [-1 1]] [x y z]))
         on-faces [[0 0 1] [0.5 0 -1] [1 0.2 0.3] [0 0 0]]
-        faces (ex/hull-faces (into corners on-faces))]
+        faces (geo/hull-faces (into corners on-faces))]
     (is (= 12 (count faces)))
     (is (= (set (range 8)) (set (flatten faces))))
     ;; every edge is shared by exactly two faces, once each way
@@ -75,22 +77,22 @@
       (is (= (count edges) (count (set edges))))
       (is (every? #(some #{[(second %) (first %)]} edges) edges))))
   (is (thrown? clojure.lang.ExceptionInfo
-               (ex/hull-faces [[0 0 0] [1 0 0] [0 1 0] [1 1 0] [2 3 0]]))))
+               (geo/hull-faces [[0 0 0] [1 0 0] [0 1 0] [1 1 0] [2 3 0]]))))
 
 (def ^:private seconds 5.0)
 
-(defn- mv [m v] (mapv #(reduce + (map * % v)) m))
-(defn- mm [a b] (mapv (fn [row] (apply mapv (fn [& col] (reduce + (map * row col))) b)) a))
-(defn- v+ [a b] (mapv + a b))
-(def ^:private C [[1 0 0] [0 0 -1] [0 1 0]])
-(defn- z-up-rotation [m] (mm (mm C m) (apply mapv vector C)))
+(defn mv [m v] (mapv #(reduce + (map * % v)) m))
+(defn mm [a b] (mapv (fn [row] (apply mapv (fn [& col] (reduce + (map * row col))) b)) a))
+(defn v+ [a b] (mapv + a b))
+(def C [[1 0 0] [0 0 -1] [0 1 0]])
+(defn z-up-rotation [m] (mm (mm C m) (apply mapv vector C)))
 
 (defn- size
   "The longest side of the box round `plan`'s segments."
   [plan]
   (let [pts (for [{:keys [position rotation shape]} (:segments plan)
                   p (:points shape)]
-              (v+ position (mv (ex/quat->matrix rotation) p)))
+              (v+ position (mv (geo/quat->matrix rotation) p)))
         lo (apply mapv min pts) hi (apply mapv max pts)]
     (apply max (map - hi lo))))
 
@@ -120,8 +122,8 @@
     (ex/write! plan mj urdf)
     {:name f :mjcf mj :urdf urdf :seconds seconds
      :pairs (map :segments (:joints plan))
-     :base {:link (:id root) :pos (ex/z-up (:position root))
-            :quat (ex/matrix->quat (z-up-rotation (ex/quat->matrix (:rotation root))))}
+     :base {:link (:id root) :pos (geo/z-up (:position root))
+            :quat (geo/matrix->quat (z-up-rotation (geo/quat->matrix (:rotation root))))}
      :joints (for [{:keys [name type segments rotation description]} (:joints plan)
                    :when (not= type :point)
                    :let [{ds :dofs} (dofs name)]]
@@ -129,9 +131,9 @@
                         :dofs (for [d ds] {:joint (:name d) :actuator (str "muscle/" (:name d))
                                            :range (:range d)})}
                  (= type :hinge) (assoc :axis (:axis (first ds)))
-                 (= type :cone) (assoc :frame (let [[turn] (ex/cone-frame description)]
+                 (= type :cone) (assoc :frame (let [[turn] (model/cone-frame description)]
                                                 ;; columns: the engine's axes, Z up
-                                                (mm C (mm (ex/quat->matrix rotation) turn))))))}))
+                                                (mm C (mm (geo/quat->matrix rotation) turn))))))}))
 
 (defn- expected-angle
   "What cortex reads of a joint whose dof `d` (of joint-dofs' `joint`)
@@ -163,11 +165,11 @@
       (is (= (set (map :id (:segments plan))) (set (keys bodies))))
       (doseq [{:keys [id mass position rotation inertia]} (:segments plan)
               :let [{m "mass" com "com" I "inertia"} (bodies id)
-                    R (ex/quat->matrix rotation)
-                    axes (mm C (mm R (ex/quat->matrix (:rotation inertia))))
+                    R (geo/quat->matrix rotation)
+                    axes (mm C (mm R (geo/quat->matrix (:rotation inertia))))
                     want (mm (mm axes (mapv #(assoc [0.0 0.0 0.0] % (nth (:moments inertia) %)) (range 3)))
                              (apply mapv vector axes))
-                    want-com (ex/z-up (v+ position (mv R (:centre inertia))))
+                    want-com (geo/z-up (v+ position (mv R (:centre inertia))))
                     norm (fn [m] (Math/sqrt (reduce + (map #(* % %) (flatten m)))))]]
         (testing id
           (is (close? m mass 1e-6))
