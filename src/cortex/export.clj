@@ -135,7 +135,7 @@
             ": metres, kilograms, seconds, radians; Z up (cortex's jME Y is Z here,"
             " its Z is -Y); see org/export.org for every mapping and what is lost")
        [:compiler {:angle "radian" :inertiafromgeom "false" :autolimits "true"}]
-       [:option {:timestep (/ 1.0 60) :gravity [0.0 0.0 -9.81] :integrator "implicitfast"
+       [:option {:timestep (/ 1.0 240) :gravity [0.0 0.0 -9.81] :integrator "implicitfast"
                  :solver "Newton" :cone "pyramidal"}]
        (when (seq meshes)
          [:asset (for [[_ {:keys [file]}] (sort-by key meshes)]

@@ -148,7 +148,7 @@
 
 (def ^:private settles-alike
   "The fixtures whose drops the three simulators agree on (see the
-  text: the four-legged creature and the humanoid do not yet)."
+  text: cortex's four-legged creature and humanoid do not come to rest)."
   #{"worm" "hand"})
 
 (defn- drop-figures [who heights rest-speed]
