@@ -1,6 +1,7 @@
 ;; Generated from org/blend-format.org by lein tangle: edit the chapter, not this file.
 (ns cortex.blend-format-test
   (:require [clojure.test :refer [deftest is testing]]
+            [cortex.blender.bytes :as bytes]
             [cortex.blender.file :as file])
   (:import [clojure.lang ExceptionInfo]
            [java.io ByteArrayOutputStream]
@@ -294,34 +295,34 @@
   (doseq [[v frames size] [["b34" 11 275204] ["b45" 3 296621] ["b50" 3 369366]]
           :let [path (str "test/fixtures/blend/" v "/transforms_compressed.blend")
                 raw (slurp-bytes path)
-                plain (file/decompress path raw)]]
+                plain (bytes/decompress path raw)]]
     (testing v
-      (is (= frames (count (file/zstd-frames path raw))))
+      (is (= frames (count (bytes/zstd-frames path raw))))
       (is (= size (alength plain)))
       (let [bf (file/parse path raw)]
         (is (= (:blocks (fixture-facts v)) (count (:blocks bf))))
         (is (= [4.0 1.0 6.0] (file/fget (light bf) "loc"))))))
   (testing "a plain file is left as it is"
     (let [bs (slurp-bytes "test/fixtures/blend/b34/transforms.blend")]
-      (is (identical? bs (file/decompress "plain" bs)))))
+      (is (identical? bs (bytes/decompress "plain" bs)))))
   (testing "gzip"
     (let [bs (slurp-bytes "test/fixtures/blend/b34/transforms.blend")
           gz (gzip bs)
           half (Arrays/copyOf gz (quot (alength gz) 2))]
-      (is (Arrays/equals bs (file/decompress "g.blend" gz)))
+      (is (Arrays/equals bs (bytes/decompress "g.blend" gz)))
       (is (= 557 (count (:blocks (file/parse "g.blend" gz)))))
       (is (= "g.blend: gzip data damaged or cut short (Unexpected end of ZLIB input stream)"
-             (ex-message (error #(file/decompress "g.blend" half)))))))
+             (ex-message (error #(bytes/decompress "g.blend" half)))))))
   (testing "zstd cut short, or damaged"
     (let [raw (slurp-bytes "test/fixtures/blend/b34/transforms_compressed.blend")
           cut (Arrays/copyOf raw 30000)
           longer (Arrays/copyOf raw (+ (alength raw) 4))]
       (is (= "z.blend: zstd stream cut short in block at byte 13880 of 30000"
-             (ex-message (error #(file/decompress "z.blend" cut)))))
+             (ex-message (error #(bytes/decompress "z.blend" cut)))))
       (is (= "z.blend: not a zstd frame at byte 69754"
-             (ex-message (error #(file/zstd-frames "z.blend" longer)))))))
+             (ex-message (error #(bytes/zstd-frames "z.blend" longer)))))))
   (testing "growth is bounded"
     (let [raw (slurp-bytes "test/fixtures/blend/b34/transforms_compressed.blend")]
-      (with-redefs [file/max-bytes 100000]
+      (with-redefs [bytes/max-bytes 100000]
         (is (= "z.blend: decompresses to more than 100000 bytes"
-               (ex-message (error #(file/decompress "z.blend" raw)))))))))
+               (ex-message (error #(bytes/decompress "z.blend" raw)))))))))

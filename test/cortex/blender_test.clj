@@ -499,7 +499,7 @@
 
 (deftest decompression-is-bounded
   ;; a small gzip that would expand far past the limit (lowered here)
-  (with-redefs [file/max-bytes 100000]
+  (with-redefs [cortex.blender.bytes/max-bytes 100000]
     (fails-clearly (write-tmp "bomb.blend" (gzip (byte-array 5000000))) #"decompresses to more than")))
 
 (deftest missing-model-fails-clearly
