@@ -32,7 +32,9 @@ OUT.json, by fixture name:
   Euler angles of the inverse relative rotation in the engine's frame,
   m^-1 = Rx Ry Rz, see cortex.projection/euler-angles).
 - "drop": MuJoCo with a floor at z = 0 (friction 0: MuJoCo takes the larger
-  of two, so each geom's own friction rules), "seconds" long: the centre of
+  of two, so each geom's own friction rules), actuation off (limp, as
+  cortex's creature is when its muscles are sent nothing), "seconds" long,
+  read every 1/60 s (cortex's step; MuJoCo's own is the MJCF's): the centre of
   mass height every step, and the fastest body speed over the last 0.5 s.
 - "urdf": check_urdf's exit code and output; PyBullet's link masses; and the
   same drop in PyBullet (1/60 s step in four substeps, floor friction 1:
@@ -138,9 +140,10 @@ def drives(m, fixture):
                 adr = m.jnt_qposadr[m.joint(dof["joint"]).id]
                 sign = -1 if end == "low" else 1
                 best = None
-                for i in range(300):
+                steps = int(round(5.0 / m.opt.timestep))
+                for i in range(steps):
                     mujoco.mj_step(m, d)
-                    if i >= 180 and (best is None or sign * d.qpos[adr] > sign * best[0]):
+                    if i >= steps * 3 // 5 and (best is None or sign * d.qpos[adr] > sign * best[0]):
                         best = (float(d.qpos[adr]), joint_angles(m, d, x0, j))
                 out.append({"joint": j["name"], "dof": dof["joint"], "end": end,
                             "qpos": best[0], "angles": best[1]})
@@ -153,19 +156,26 @@ def mj_drop(path, seconds):
     os.remove(floored)
     if m is None:
         return {"error": err}
+    # cortex's drop sends its muscles no action, and they pull nothing; an
+    # exported position servo told nothing (ctrl 0) would hold its joint at
+    # 0, so the drop turns actuation off: the creature falls limp in both
+    m.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_ACTUATION
     d = mujoco.MjData(m)
     mujoco.mj_forward(m, d)
     mass = m.body_mass[1:].sum()
     heights, speeds = [], []
     prev = d.xipos.copy()
-    steps = int(round(seconds / m.opt.timestep))
-    for i in range(steps):
-        mujoco.mj_step(m, d)
+    # recorded once per cortex step (1/60 s), however many MuJoCo steps that is
+    sub = max(1, int(round((1 / 60) / m.opt.timestep)))
+    frame = sub * m.opt.timestep
+    for i in range(int(round(seconds / frame))):
+        for _ in range(sub):
+            mujoco.mj_step(m, d)
         heights.append(float((m.body_mass[1:] * d.xipos[1:, 2]).sum() / mass))
-        speeds.append(float(np.linalg.norm(d.xipos[1:] - prev[1:], axis=1).max() / m.opt.timestep))
+        speeds.append(float(np.linalg.norm(d.xipos[1:] - prev[1:], axis=1).max() / frame))
         prev[:] = d.xipos
-    tail = int(round(0.5 / m.opt.timestep))
-    return {"heights": heights, "rest_speed": max(speeds[-tail:]), "step": m.opt.timestep}
+    return {"heights": heights, "rest_speed": max(speeds[-30:]), "step": m.opt.timestep,
+            "frame": frame}
 
 
 def urdf(fixture):

@@ -64,7 +64,9 @@
    "cortex.blender.rigid-body" "cortex.blender.scene" "cortex.blender.jme" "cortex.blender"
    "cortex.shapes" "cortex.segment" "cortex.nearest" "cortex.joint" "cortex.vision"
    "cortex.rigid-body" "cortex.constraint" "cortex.plan" "cortex.body" "cortex.physics-tab"
-   "cortex.proprioception" "cortex.muscle" "cortex.touch" "cortex.sim" "cortex.export"
+   "cortex.proprioception" "cortex.muscle" "cortex.touch" "cortex.sim"
+   "cortex.export.geometry" "cortex.export.xml" "cortex.export.model" "cortex.export.urdf"
+   "cortex.export"
    "cortex.render" "cortex.sight" "cortex.demo" "cortex.test.body" "cortex.rollout"
    "cortex.main"])
 

@@ -1,0 +1,124 @@
+;; Generated from org/export.org by lein tangle: edit the chapter, not this file.
+(ns cortex.export.urdf
+  "A creature's plan as a URDF document (see `urdf`)."
+  (:require [clojure.string :as str]
+            [cortex.export.geometry :refer [C axis-turn identity3 matrix->quat mesh-files mm mv
+                                            pieces quat->matrix transpose v* v+ v- z-up]]
+            [cortex.export.model :refer [blender->jme muscles plan-dofs segment-info tree]]
+            [cortex.export.xml :refer [text xml]]))
+
+(set! *warn-on-reflection* true)
+
+(defn- rpy
+  "Roll, pitch, yaw (URDF's fixed X, Y, Z angles: R = Rz Ry Rx) of `m`."
+  [m]
+  (let [[[a _ _] [d _ _] [g h i]] m]
+    [(Math/atan2 h i) (Math/asin (max -1.0 (min 1.0 (- (double g))))) (Math/atan2 d a)]))
+
+(defn- origin
+  "URDF's <origin> of a frame at `p` turned by `R` (Z-up world), seen
+  from the frame [o F]."
+  [[o F] p R]
+  [:origin {:xyz (mv (transpose F) (v- p o)) :rpy (rpy (mm (transpose F) R))}])
+
+(defn- urdf-geometry
+  [meshes id k {:keys [type half-extents radius height axis]}]
+  [:geometry
+   (case type
+     :mesh [:mesh {:filename (:file (meshes [id k]))}]
+     :box [:box {:size (v* 2 half-extents)}]
+     :sphere [:sphere {:radius radius}]
+     :capsule [:capsule {:radius radius :length height}]
+     :cylinder (let [k (or axis 1)]
+                 [:cylinder {:radius (nth half-extents (if (zero? k) 1 0))
+                             :length (* 2 (double (nth half-extents k)))}]))])
+
+(defn- urdf-link
+  "The <link> of segment `info` whose frame is `frame` [o F]."
+  [{:keys [id pos R com principal moments mass friction shape static?]} meshes frame]
+  [:link {:name id}
+   [:inertial
+    (origin frame (v+ pos (mv R com)) (mm R principal))
+    [:mass {:value (double mass)}]
+    (let [[a b c] moments]
+      [:inertia {:ixx a :ixy 0.0 :ixz 0.0 :iyy b :iyz 0.0 :izz c}])]
+   (for [[k {:keys [type] :as piece}] (map-indexed vector (pieces shape))
+         tag [:visual :collision]]
+     (let [placed (if (= type :mesh)
+                    [(:pos piece) identity3]
+                    [(:pos piece) (mm (:rot piece)
+                                      (if (#{:capsule :cylinder} type) (axis-turn (:axis piece)) identity3))])
+           [pp pr] placed]
+       [tag (origin frame (v+ pos (mv R (z-up pp))) (mm R (mm (mm C pr) (transpose C))))
+        (urdf-geometry meshes id k piece)]))
+   [:contact [:lateral_friction {:value (double friction)}]]])
+
+(defn urdf
+  "The URDF document (a string) of `plan`, naming the same meshes as
+  `mjcf`. `opts` as for `mjcf`. An ex-info for a creature in several
+  pieces (URDF is one tree)."
+  ([plan] (urdf plan {}))
+  ([plan {:keys [root]}]
+   (let [infos (into {} (map (juxt :id segment-info)) (:segments plan))
+         {:keys [roots children joint] :as t} (tree plan root)
+         _ (when (next roots)
+             (throw (ex-info (str "creature " (:creature plan) " is in " (count roots)
+                                  " pieces (roots " (str/join ", " roots)
+                                  "); a URDF robot is one tree")
+                             {:roots roots})))
+         all-dofs (plan-dofs plan t)
+         meshes (mesh-files plan)
+         ms (muscles plan)
+         frame-of (fn [id] (if-let [j (joint id)]
+                             [(z-up (:pivot j)) (:R (infos id))]
+                             [(:pos (infos id)) (:R (infos id))]))
+         tiny (fn [n] [:link {:name n}
+                       [:inertial [:mass {:value 1e-6}]
+                        [:inertia {:ixx 1e-9 :ixy 0.0 :ixz 0.0 :iyy 1e-9 :iyz 0.0 :izz 1e-9}]]])
+         links (fn links [id]
+                 (cons (urdf-link (infos id) meshes (frame-of id))
+                       (mapcat links (children id))))
+         joints (fn joints [parent]
+                  (mapcat
+                   (fn [id]
+                     (let [{jn :name :keys [type rotation] :as j} (joint id)
+                           [o F :as frame] (frame-of id)
+                           ds (all-dofs jn)
+                           strength (:strength (ms jn))
+                           ds (if (some :ball ds)
+                                (for [[k b] (map-indexed vector [[1 0 0] [0 1 0] [0 0 1]])]
+                                  {:name (str jn "/" (["x" "y" "z"] k)) :continuous true
+                                   :axis (z-up (mv (quat->matrix rotation) (blender->jme b)))})
+                                ds)
+                           chain (concat [parent] (for [k (range 1 (count ds))] (str "_" jn "/" k)) [id])]
+                       (concat
+                        (when (next ds)
+                          [(str "joint " jn ": a " (name type) " joint, written as " (count ds)
+                                " one-axis joints through links of negligible mass (_" jn "/1, ...)"
+                                (when (= type :cone) ", in the order cortex's engine limits it"))])
+                        (map tiny (butlast (rest chain)))
+                        (for [[{:keys [name axis range continuous]} [p c]]
+                              (map vector ds (partition 2 1 chain))]
+                          [:joint {:name name :type (if continuous "continuous" "revolute")}
+                           [:parent {:link p}] [:child {:link c}]
+                           (if (= p parent)
+                             (origin (frame-of parent) o F)
+                             [:origin {:xyz [0.0 0.0 0.0] :rpy [0.0 0.0 0.0]}])
+                           [:axis {:xyz (mv (transpose F) axis)}]
+                           (if continuous
+                             [:limit {:effort strength :velocity 100.0}]
+                             [:limit {:lower (first range) :upper (second range)
+                                      :effort strength :velocity 100.0}])])
+                        (joints id))))
+                   (children parent)))
+         r (first roots)
+         [o F] (frame-of r)]
+     (xml
+      [:robot {:name (:creature plan)}
+       (str "written by cortex.export from the plan of creature " (:creature plan)
+            ": metres, kilograms, seconds, radians; Z up; see org/export.org")
+       (str "the root link " r " is placed in the world at xyz " (text o) ", quaternion [x y z w] "
+            (text (matrix->quat F)))
+       (links r)
+       (joints r)]))))
+
