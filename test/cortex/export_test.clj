@@ -156,7 +156,7 @@
   "The longest side of the box round `plan`'s segments."
   [plan]
   (let [pts (for [{:keys [position rotation shape]} (:segments plan)
-                  p (:points shape)]
+                  p (model/shape-points shape)]
               (v+ position (mv (geo/quat->matrix rotation) p)))
         lo (apply mapv min pts) hi (apply mapv max pts)]
     (apply max (map - hi lo))))

@@ -49,7 +49,9 @@
                     [(:pos piece) (mm (:rot piece)
                                       (if (#{:capsule :cylinder} type) (axis-turn (:axis piece)) identity3))])
            [pp pr] placed]
-       [tag (origin frame (v+ pos (mv R (z-up pp))) (mm R (mm (mm C pr) (transpose C))))
+       ;; a mesh's points are already Z up; a primitive's own axes are
+       ;; the segment's (jME's), turned to Z up by C, as the MJCF's geoms are
+       [tag (origin frame (v+ pos (mv R (z-up pp))) (if (= type :mesh) R (mm R (mm C pr))))
         (urdf-geometry meshes id k piece)]))
    [:contact [:lateral_friction {:value (double friction)}]]])
 
