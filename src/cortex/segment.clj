@@ -414,6 +414,24 @@
                                      (pr-str v))
                                 {:object (segment-name geom) :shape v})))))
 
+(def ^:private fitted
+  "The shapes of the last few hundred meshes fitted, by their triangles:
+  a creature's segments are often copies of one mesh (a chain's links, a
+  hand's finger bones), and fitting one costs a few milliseconds."
+  (java.util.Collections/synchronizedMap
+   (proxy [java.util.LinkedHashMap] [64 0.75 true]
+     (removeEldestEntry [_] (> (.size ^java.util.Map this) 512)))))
+
+(defn- fitted-shape
+  "cortex.shapes/segment-shape of `triangles`, remembered when the mesh
+  is small (a few thousand triangles at most: the cache holds them)."
+  [triangles]
+  (or (.get ^java.util.Map fitted triangles)
+      (let [s (shapes/segment-shape triangles {:shapes :fit})]
+        (when (<= (count triangles) 2000)
+          (.put ^java.util.Map fitted triangles s))
+        s)))
+
 (defn shape-choice
   "The collision shape of segment `geom`, as data: `hull` (the seed's,
   see `hull-points`) when its `shape` property or else :shapes of
@@ -422,7 +440,7 @@
   [^Geometry geom opts hull]
   (if (= :hull (or (shape-property geom) (:shapes opts)))
     hull
-    (let [s (shapes/segment-shape (shapes/triangles geom) {:shapes :fit})]
+    (let [s (fitted-shape (shapes/triangles geom))]
       (if (= :hull (:type s)) hull s))))
 
 (defn plan-segment
