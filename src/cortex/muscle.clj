@@ -21,34 +21,33 @@
   before any torque is applied."
   (:require [clojure.string :as str]
             [cortex.engine :as engine]
-            [cortex.proprioception :as p])
+            [cortex.proprioception :as p]
+            [cortex.strength :as strength])
   (:import (com.jme3.bullet.joints PhysicsJoint)
            (com.jme3.math Vector3f)
            (com.jme3.scene Node)))
 
 (set! *warn-on-reflection* true)
 
-(def gravity
-  "The gravity, m/s^2, that default strengths are sized against."
-  9.81)
+(def ^{:doc "The gravity, m/s^2, that default strengths are sized against
+  (cortex.strength/gravity)."}
+  gravity strength/gravity)
 
-(def step
-  "The physics step the default gains are sized for, s."
-  (/ 1.0 60))
+(def ^{:doc "The physics step the default gains are sized for, s
+  (cortex.strength/step)."}
+  step strength/step)
+
+(def ^{:arglists '([loads]) :doc "cortex.strength/default-strength."}
+  default-strength strength/default-strength)
+
+(def ^{:arglists '([strength inertia own]) :doc "cortex.strength/default-gains."}
+  default-gains strength/default-gains)
 
 (defn- v3 [^Vector3f v] [(double (.x v)) (double (.y v)) (double (.z v))])
 
 (defn- mass-of ^double [rb]
   (let [inv (engine/inverse-mass rb)]
     (if (zero? inv) 0.0 (/ 1.0 inv))))
-
-(defn default-strength
-  "Twice the torque that holds the lighter moving segment straight out
-  against gravity: 2 g m d, over `loads`, [mass distance] of each
-  segment (mass 0 for a static one). 0 when neither moves."
-  ^double [loads]
-  (let [moving (for [[m d] loads :when (pos? (double m))] (* (double m) (double d)))]
-    (if (seq moving) (* 2.0 gravity (apply min moving)) 0.0)))
 
 (defn pivot-inertia
   "The moment of inertia of `rb` about the axis through `pivot` along
@@ -65,15 +64,6 @@
           r2 (- (p/dot pivot pivot) (* along along))]
       (+ own (* (mass-of rb) r2)))))
 
-(defn default-gains
-  "{:kp :kd} for a muscle of `strength` at a joint whose two segments
-  have a reduced moment of inertia `inertia` about the pin and `own`
-  about their centres of mass: kp = strength / 0.02, at most inertia
-  (0.5/dt)^2; kd = 2 sqrt(kp inertia), critical damping, but at most
-  own/dt, so that one step never overshoots (see the text)."
-  [^double strength ^double inertia ^double own]
-  (let [kp (min (/ strength 0.02) (* inertia (Math/pow (/ 0.5 step) 2)))]
-    {:kp kp :kd (min (* 2.0 (Math/sqrt (* kp inertia))) (/ own step))}))
 
 (defn- given
   "The non-negative number the joint's description gives for `k`, or

@@ -13,6 +13,7 @@
             [cortex.nearest :as nearest]
             [cortex.rigid-body :as rigid-body]
             [cortex.segment :as segment]
+            [cortex.strength :as strength]
             [cortex.vision :as vision])
   (:import (com.jme3.bullet.control RigidBodyControl)
            (com.jme3.scene Geometry Node Spatial)
@@ -202,6 +203,19 @@
     (doseq [[k v] (map vector ks vs)] (.put m k v))
     (fn [k] (.get m k))))
 
+(defn- with-muscles
+  "`p` with each joint's muscle, {:strength :kp :kd} (a cone's or point
+  joint's gains per axis of its frame, jME's order), as cortex.muscle
+  will work it out from the built bodies (see cortex.strength): the
+  description's own where it gives them. A joint with a segment the
+  plan keeps, or one of the Physics tab's, has none here: its mass
+  properties are not the plan's."
+  [p]
+  (let [planned (set (map :id (filter :inertia (:segments p))))
+        sized (filterv #(every? planned (:segments %)) (:joints p))
+        ms (strength/plan-muscles (assoc p :joints sized))]
+    (update p :joints (fn [js] (mapv #(if-let [m (ms (:name %))] (assoc % :muscle m) %) js)))))
+
 (defn plan-parts
   "The plan of `creature` (see `plan`) for `parts`, a set of :segments,
   :joints and :eyes. Without :segments, the plan holds the segments
@@ -231,7 +245,8 @@
                  (vision/plan-eyes creature index tol id-of))]
       ;; segments, joints, eyes and constraints are plain data as they
       ;; are made; what is gathered from elsewhere is made so here
-      (cond-> {:plan/version version
+      (cond-> (with-muscles
+               {:plan/version version
                :creature (.getName creature)
                :parts (vec (sort (cond-> parts tab? (conj :physics-tab))))
                :options (segment/plain opts)
@@ -240,7 +255,7 @@
                :joints (:joints js [])
                :eyes (or eyes [])
                :doubts (segment/plain (:doubts js []))
-               :warnings (segment/plain (into (vec (:warnings js [])) (:warnings tab)))}
+               :warnings (segment/plain (into (vec (:warnings js [])) (:warnings tab)))})
         tab? (assoc :constraints (:constraints tab)
                     :world (segment/plain (:world tab))
                     :joint-order (vec (:joint-order tab)))))))

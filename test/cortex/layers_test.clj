@@ -58,14 +58,14 @@
 
 (def ^:private layers
   "The library's namespaces, lowest first."
-  ["cortex.geometry" "cortex.engine" "cortex.engine-contract" "cortex.mass" "cortex.sense"
+  ["cortex.geometry" "cortex.export.geometry" "cortex.strength" "cortex.engine" "cortex.engine-contract" "cortex.mass" "cortex.sense"
    "cortex.projection" "cortex.util" "cortex.world"
    "cortex.blender.bytes" "cortex.blender.file" "cortex.blender.math" "cortex.blender.mesh"
    "cortex.blender.rigid-body" "cortex.blender.scene" "cortex.blender.jme" "cortex.blender"
    "cortex.shapes" "cortex.segment" "cortex.nearest" "cortex.joint" "cortex.vision"
    "cortex.rigid-body" "cortex.constraint" "cortex.plan" "cortex.body" "cortex.physics-tab"
    "cortex.proprioception" "cortex.muscle" "cortex.touch" "cortex.sim"
-   "cortex.export.geometry" "cortex.export.xml" "cortex.export.model" "cortex.export.urdf"
+   "cortex.export.xml" "cortex.export.model" "cortex.export.urdf"
    "cortex.export"
    "cortex.render" "cortex.sight" "cortex.demo" "cortex.test.body" "cortex.rollout"
    "cortex.main"])

@@ -4,6 +4,7 @@
             [clojure.test :refer [deftest is testing]]
             [cortex.body :as body]
             [cortex.drops :as drops]
+            [cortex.muscle :as muscle]
             [cortex.physics-tab :as physics-tab]
             [cortex.plan :as plan]
             [cortex.segment :as segment]
@@ -101,6 +102,26 @@
           (str name ": one joint in the space for each in its plan"))
       (is (pos? (count (.getJointList ^com.jme3.bullet.PhysicsSpace (:space s)))))
       (finally (sim/destroy! s)))))
+
+(deftest a-plan-says-each-joint-s-muscle
+  (doseq [name ["hand" "quadruped" "worm"]
+          :let [c (fresh name)
+                p (plan/plan c {:physics-tab? false})
+                planned (into {} (map (juxt :name :muscle)) (:joints p))
+                built (muscle/muscles (body/body! c))]]
+    (is (= (set (keys planned)) (set (keys built))) name)
+    (doseq [[n {:keys [strength kp kd type]}] built
+            :let [m (planned n)
+                  ;; cortex.muscle gives a cone's gains in Blender's axis order
+                  order (if (= type :hinge) identity (fn [[x y z]] [x z y]))
+                  close? (fn close? [a b]
+                           (if (sequential? a)
+                             (every? true? (map close? a b))
+                             (<= (Math/abs (- (double a) (double b)))
+                                 (* 1e-4 (max 1.0 (Math/abs (double b)))))))]]
+      (is (close? (:strength m) strength) (str name " " n))
+      (is (close? (order (:kp m)) kp) (str name " " n))
+      (is (close? (order (:kd m)) kd) (str name " " n)))))
 
 (deftest a-plan-from-another-creature-is-refused-by-name
   (let [p (plan/plan (fresh "worm"))

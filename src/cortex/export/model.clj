@@ -8,39 +8,14 @@
             [cortex.body :as body]
             [cortex.export.geometry :refer [C dot identity3 mm mv norm quat->matrix
                                             v+ v- v* z-up z-up-rotation]]
-            [cortex.muscle :as muscle])
+            [cortex.strength :as strength :refer [axis-of box-moments]])
   (:import (com.jme3.math Quaternion Vector3f)))
 
 (set! *warn-on-reflection* true)
 
-(defn box-moments
-  "Bullet's box rule: the principal moments of mass `m` spread as a box
-  the size of the bounding box of `points` (plus `margin` on every
-  side), about the origin."
-  [m points margin]
-  (let [[lx ly lz] (for [k (range 3)
-                         :let [xs (map #(double (nth % k)) points)]]
-                     (+ (- (reduce max xs) (reduce min xs)) (* 2 (double margin))))
-        k (/ (double m) 12)]
-    [(* k (+ (* ly ly) (* lz lz))) (* k (+ (* lx lx) (* lz lz))) (* k (+ (* lx lx) (* ly ly)))]))
-
-(defn shape-points
-  "The points (the segment's own frame, jME's axes) that bound `shape`:
-  a hull's own; a primitive's bounding box's corners."
-  [{:keys [type points half-extents radius height axis children] :as shape}]
-  (case type
-    (:hull :mesh) points
-    :box (let [[x y z] half-extents] (for [a [-1 1] b [-1 1] c [-1 1]] [(* a x) (* b y) (* c z)]))
-    :sphere (let [r radius] (for [a [-1 1] b [-1 1] c [-1 1]] [(* a r) (* b r) (* c r)]))
-    (:capsule :cone :cylinder)
-    (let [r (or radius (first half-extents))
-          h (case type :capsule (+ (/ (double height) 2) r) :cone (/ (double height) 2)
-                  :cylinder (nth half-extents (or axis 1)))
-          ext (assoc [r r r] (or axis 1) h)]
-      (for [a [-1 1] b [-1 1] c [-1 1]] (mapv * [a b c] ext)))
-    :compound (for [{s :shape p :position q :rotation} children
-                    pt (shape-points s)]
-                (v+ p (mv (quat->matrix q) pt)))))
+(def ^{:arglists '([shape])
+       :doc "The points that bound `shape`: cortex.strength/shape-points."}
+  shape-points strength/shape-points)
 
 (defn segment-info
   "What the writers need of plan segment `s`."
@@ -125,16 +100,9 @@
                       {:rows rows})))
     [rows (mapv double limits)]))
 
-(defn axis-of
-  "A hinge description's axis as [x y z] (Blender's axes), unit; X
-  when it gives none."
-  [{:keys [axis]}]
-  (let [a (cond (nil? axis) [1 0 0]
-                (instance? Vector3f axis) (let [^Vector3f v axis] [(.x v) (.y v) (.z v)])
-                :else axis)]
-    (v* (/ 1.0 (norm a)) a)))
-
-(defn blender->jme [[x y z]] [x z (- y)])
+(def ^{:arglists '([v])
+       :doc "Blender's [x y z] in jME's axes: cortex.strength/blender->jme."}
+  blender->jme strength/blender->jme)
 
 (defn- dofs
   "The one-axis degrees of freedom of plan joint `j` in the tree, the
@@ -164,62 +132,10 @@
                            " joint cannot be exported yet")
                       {:joint name :type type})))))
 
-(defn- world-inertia
-  "A segment's (jME world) centre of mass, principal axes (columns) and
-  moments."
-  [{:keys [position rotation inertia shape mass]}]
-  (let [R (quat->matrix rotation)
-        box? (= :box (:source inertia))]
-    {:com (v+ position (mv R (if box? [0 0 0] (:centre inertia))))
-     :axes (mm R (if box? identity3 (quat->matrix (:rotation inertia))))
-     :moments (if box? (box-moments mass (shape-points shape) (or (:margin shape) 0.0))
-                  (:moments inertia))
-     :mass (double mass)}))
+(def ^{:arglists '([plan])
+       :doc "Each joint's muscle, by name, from `plan`: cortex.strength/plan-muscles."}
+  muscles strength/plan-muscles)
 
-(defn- pin-inertia
-  "cortex.muscle/pivot-inertia of a segment (see `world-inertia`) about
-  the world axis `axis` through `pin` (relative to its centre of mass)."
-  ^double [{:keys [axes moments mass]} axis pin]
-  (if (zero? (double mass))
-    Double/POSITIVE_INFINITY
-    (let [inv (reduce + (map (fn [i k] (let [a (dot axis (mapv #(nth % k) axes))]
-                                          (/ (* a a) (double i))))
-                             moments (range 3)))
-          own (if (pos? inv) (/ 1.0 inv) Double/POSITIVE_INFINITY)
-          along (dot pin axis)]
-      (+ own (* (double mass) (- (dot pin pin) (* along along)))))))
-
-(defn muscles
-  "Each joint's muscle, by name, as cortex.muscle works it out from the
-  built creature, here from the plan: {:strength s :kp k :kd d} for a
-  hinge, :kp and :kd [x y z] about the joint frame's axes (jME's
-  order) for a cone or point joint."
-  [plan]
-  (let [segs (into {} (map (juxt :id world-inertia)) (:segments plan))]
-    (into {}
-          (for [{:keys [name type description pivot rotation] [a b] :segments} (:joints plan)]
-            (let [A (segs a) B (segs b)
-                  pa (v- pivot (:com A)) pb (v- pivot (:com B))
-                  given (fn [k default] (if-some [v (get description k)] (double v) (default)))
-                  strength (given :strength
-                                  #(muscle/default-strength [[(:mass A) (norm pa)] [(:mass B) (norm pb)]]))
-                  about (fn [ax pin-a pin-b]
-                          (let [i (/ 1.0 (+ (/ 1.0 (pin-inertia A ax pin-a))
-                                            (/ 1.0 (pin-inertia B ax pin-b))))]
-                            (if (and (Double/isFinite i) (pos? i)) i 1.0)))
-                  sized (fn [ax] (let [i (about ax pa pb)]
-                                   (muscle/default-gains strength i
-                                                         (min i (about ax [0 0 0] [0 0 0])))))
-                  E (quat->matrix rotation)]
-              [name
-               (if (= type :hinge)
-                 (let [g (sized (mv E (blender->jme (axis-of description))))]
-                   {:strength strength :kp (given :kp #(:kp g)) :kd (given :kd #(:kd g))})
-                 (let [gs (mapv #(sized (mapv (fn [row] (nth row %)) E)) (range 3))
-                       per (fn [k] (if-some [v (get description k)]
-                                     (vec (repeat 3 (double v)))
-                                     (mapv k gs)))]
-                   {:strength strength :kp (per :kp) :kd (per :kd)}))])))))
 
 (defn plan-dofs
   "Each plan joint's dofs (see `dofs`) in the tree `t`, by joint name."
