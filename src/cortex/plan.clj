@@ -211,9 +211,10 @@
   plan keeps, or one of the Physics tab's, has none here: its mass
   properties are not the plan's."
   [p]
-  (let [planned (set (map :id (filter :inertia (:segments p))))
+  (let [segments (filterv :inertia (:segments p))
+        planned (set (map :id segments))
         sized (filterv #(every? planned (:segments %)) (:joints p))
-        ms (strength/plan-muscles (assoc p :joints sized))]
+        ms (if (seq sized) (strength/plan-muscles (assoc p :segments segments :joints sized)) {})]
     (update p :joints (fn [js] (mapv #(if-let [m (ms (:name %))] (assoc % :muscle m) %) js)))))
 
 (defn plan-parts
