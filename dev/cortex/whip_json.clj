@@ -1,7 +1,9 @@
 ;; Generated from org/physics-trust.org by lein tangle: edit the chapter, not this file.
 (ns cortex.whip-json
   "A creature placed and built as the drop test does it, written as JSON
-  for scripts/compare/quadruped_whip.py (the physics-trust chapter).
+  (the model scripts/compare/quadruped_whip.py built before it loaded
+  the MJCF export), and a drop's speeds as CSV for its picture (the
+  physics-trust chapter).
 
   Entry point: `-main` (lein run -m cortex.whip-json FILE.blend OUT.json;
   lein run -m cortex.whip-json speeds FILE.blend OUT.csv [friction]: every

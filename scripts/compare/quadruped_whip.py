@@ -5,7 +5,7 @@ A Python script, outside cortex's Clojure code (see scripts/compare/README.md
 for the venv; it needs only `mujoco` and numpy, and without them it says so
 and exits 0).
 
-    /work/venvs/compare/bin/python scripts/compare/quadruped_whip.py EXPORT.json OUT.json
+    /work/venvs/compare/bin/python scripts/compare/quadruped_whip.py EXPORT.xml OUT.json
     ... --frictions 0.25,0.5,1.0   # one drop per friction (the default)
     ... --dt 0.001 --seconds 3     # MuJoCo's step and how long each drop runs
     ... --cortex-csv FILE          # a cortex drop's speeds to draw (repeatable)
@@ -13,7 +13,7 @@ and exits 0).
 
 The picture org/images/quadruped-whip.png (run from the repository root):
 
-    /work/venvs/compare/bin/python scripts/compare/quadruped_whip.py out/compare/quadruped.json /tmp/whip.json --frictions 0.5 --cortex-csv out/compare/whip-jbullet.csv --cortex-csv out/compare/whip-native.csv --plot org/images/quadruped-whip.png
+    /work/venvs/compare/bin/python scripts/compare/quadruped_whip.py out/compare/quadruped.xml /tmp/whip.json --frictions 0.5 --cortex-csv out/compare/whip-jbullet.csv --cortex-csv out/compare/whip-native.csv --plot org/images/quadruped-whip.png
 
 Why: cortex's physics-trust drop test says no body may move faster than
 sqrt(2 g H) + 1 m/s, H the drop of the creature's highest point to the floor.
@@ -22,25 +22,26 @@ bodies flows into the light tip), and MuJoCo's does too.  This script gives
 the reference figure the test compares the four-legged creature (torso,
 legs, neck, head and a three-segment tail) with.
 
-What it runs: the creature of EXPORT.json, as cortex exports it (jME axes,
-Y up, floor at y = 0; each segment's mass, centre of mass, principal frame
-quat [x y z w], principal moments and world vertices; each joint's two
-segments, pivot, type and limits, and world axis for hinges), turned into
-MuJoCo's Z-up axes (x, y, z) -> (x, -z, y).  The heaviest segment is the
-root and gets a free joint; the tree grows from it (a joint whose segments
-are named child first is turned round, its hinge range negated); nothing is
-named in the code, so any tree (a hand, a chain) works, and a creature whose
-joints close a loop is refused with the joint named (MuJoCo needs a tree).  Every body starts at rest where
-the export puts it and falls onto the floor, for each friction: friction on
-every geom and the floor (torsional and rolling MuJoCo's defaults),
-implicitfast, time step --dt, MuJoCo's other defaults (pyramidal cones,
-Newton solver, default contact softness); a body's contacts with its parent
-are off (MuJoCo's rule), all other pairs on.  A body's speed is the finite
-difference of its centre of mass (xipos) over one step; its peak and the
-time at the end of that step are recorded.  Printed: per friction the
-fastest body, its peak speed, when, and the test's bound sqrt(2 g H) + 1
-with H = 1 + (highest vertex - lowest vertex) of the export (the test drops
-the creature with its lowest point 1 m above the floor; g = 9.81).
+What it runs: the creature of EXPORT.xml, cortex's MJCF export
+(`lein run -- FILE.blend --mjcf EXPORT.xml`, org/export.org), loaded with
+MjSpec: a floor plane added at z = 0, the creature lifted by its free
+joint until its lowest point (of its geoms' corners, ends or vertices) is
+1 m above the floor, as the drop test places it; its actuators off (the
+drop sends the muscles nothing); friction on every geom and the floor
+(torsional and rolling as exported); implicitfast, time step --dt, the
+export's other settings (pyramidal cones, Newton solver, MuJoCo's default
+contact softness); joined bodies' contacts excluded (as exported), all
+other pairs on.  Every body starts at rest and falls onto the floor, for
+each friction.  A body's speed is the finite difference of its centre of
+mass (xipos) over one step; its peak and the time at the end of that step
+are recorded.  Printed: per friction the fastest body, its peak speed,
+when, and the test's bound sqrt(2 g H) + 1 with H = 1 + the creature's
+height (highest geom point - lowest; the test drops the creature with its
+lowest point 1 m above the floor; g = 9.81).
+
+Before the export this script wrote its own model from cortex.whip-json's
+JSON (each cone one ball joint limited to its larger swing, no twist
+limit); the export's model gives the reference within 0.02%.
 
 OUT.json: {"source", "command", "export", "frictions": {"0.25": {"fastest",
 "body", "time", "speeds": {body: peak m/s}}, ...}}, numbers rounded to 3
@@ -60,18 +61,11 @@ friction of --frictions: MuJoCo's fastest body (every MuJoCo step) and its
 root body (thinner, lighter), the same two bodies of every --cortex-csv in a
 colour of its own, and a dashed line at the bound sqrt(2 g H) + 1.
 
-Assumptions:
-- joints: hinge -> MuJoCo hinge about the world axis with the export's limit
-  [lo, hi]; cone -> ball joint limited to max(limit-xz, limit-xy) (MuJoCo's
-  ball limit is one cone angle; the twist limit is not modelled); point ->
-  unlimited ball joint.
-- bodies: every segment is a box; each geom is the box of its vertices'
-  extents in the body's principal frame (the segment itself for a box).
-- friction: MuJoCo takes the larger of a contact pair's two frictions,
-  Bullet (cortex) their product.  Here the floor's friction is set equal to
-  the bodies', so every MuJoCo pair has exactly the friction named (the
-  larger of two equal values); in Bullet the same pair would have the
-  product of the floor's and the body's coefficients.
+Friction: MuJoCo takes the larger of a contact pair's two frictions,
+Bullet (cortex) their product.  Here the floor's friction is set equal to
+the bodies', so every MuJoCo pair has exactly the friction named (the
+larger of two equal values); in Bullet the same pair would have the
+product of the floor's and the body's coefficients.
 """
 
 import argparse
@@ -90,119 +84,55 @@ except ImportError:  # main() says so
 G = 9.81
 
 
-def cv(p):
-    """jME (x, y, z), Y up -> MuJoCo (x, -z, y), Z up."""
-    return np.array([p[0], -p[2], p[1]], float)
+def geom_points(m, d, g):
+    """World points bounding geom g (its corners, ends or vertices)."""
+    pos, rot, size = d.geom_xpos[g], d.geom_xmat[g].reshape(3, 3), m.geom_size[g]
+    t = m.geom_type[g]
+    if t == mujoco.mjtGeom.mjGEOM_BOX:
+        local = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1)
+                          for sz in (-1, 1)]) * size
+    elif t == mujoco.mjtGeom.mjGEOM_MESH:
+        a = m.geom_dataid[g]
+        local = m.mesh_vert[m.mesh_vertadr[a]:m.mesh_vertadr[a] + m.mesh_vertnum[a]]
+    elif t == mujoco.mjtGeom.mjGEOM_SPHERE:
+        return pos + np.vstack([np.eye(3), -np.eye(3)]) * size[0]
+    elif t in (mujoco.mjtGeom.mjGEOM_CAPSULE, mujoco.mjtGeom.mjGEOM_CYLINDER):
+        # a rim or end cap: its lowest and highest points along world z
+        r, h = size[0], size[1]
+        ends = np.array([[0, 0, -h], [0, 0, h]]) @ rot.T + pos
+        ax = rot[:, 2]
+        reach = r if t == mujoco.mjtGeom.mjGEOM_CAPSULE else r * math.sqrt(max(0.0, 1 - ax[2] ** 2))
+        return np.vstack([ends + [0, 0, reach], ends - [0, 0, reach]])
+    else:
+        raise ValueError(f"geom {m.geom(g).name}: type {t} not bounded here")
+    return local @ rot.T + pos
 
 
-C = ((1.0, 0, 0), (0, 0, -1), (0, 1, 0))  # the same as a matrix
+def build(path, friction, dt):
+    """The creature of the MJCF export `path` (cortex.export/mjcf) on a floor,
+    its lowest point 1 m above it, every geom and the floor on `friction`,
+    MuJoCo's step `dt`, its muscles off.  Returns (model, data, limit):
+    limit = sqrt(2 g H) + 1, H = 1 + the creature's height."""
+    spec = mujoco.MjSpec.from_file(path)
+    spec.worldbody.add_geom(name="floor", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[0, 0, 1])
+    m = spec.compile()
+    m.opt.timestep = dt
+    m.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_ACTUATION
+    m.geom_friction[:, 0] = friction
+    d = mujoco.MjData(m)
+    mujoco.mj_forward(m, d)
+    zs = np.concatenate([geom_points(m, d, g)[:, 2] for g in range(m.ngeom)
+                         if m.geom_bodyid[g] != 0])
+    root = next(j for j in range(m.njnt) if m.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE)
+    d.qpos[m.jnt_qposadr[root] + 2] += 1.0 - zs.min()
+    mujoco.mj_forward(m, d)
+    return m, d, math.sqrt(2 * G * (1 + zs.max() - zs.min())) + 1
 
 
-def quat_matrix(q):
-    """Rotation matrix of a jME quaternion [x y z w] (principal -> world)."""
-    x, y, z, w = np.asarray(q, float) / np.linalg.norm(q)
-    return np.array([
-        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
-
-
-def f3(v):
-    return " ".join("%.9g" % x for x in v)
-
-
-def build_xml(export, friction, dt):
-    """MJCF of the creature: bodies world-aligned at their centres of mass,
-    inertia and box geom turned into each body's principal frame."""
-    seg = {s["name"]: s for s in export["segments"]}
-    # The tree: from the heaviest segment of each connected part outwards
-    # (cortex names a joint's two segments in no particular order).  A
-    # joint named child-first is turned round: its hinge range negated.
-    joint_of, children, flipped, roots = {}, {}, set(), []
-    unplaced = sorted(seg, key=lambda n: (-seg[n]["mass"], n))
-    placed = set()
-    while unplaced:
-        root = unplaced[0]
-        roots.append(root)
-        placed.add(root)
-        queue = [root]
-        while queue:
-            parent = queue.pop(0)
-            for j in export["joints"]:
-                a, b = j["segments"]
-                if parent not in (a, b) or j["name"] in {k["name"] for k in joint_of.values()}:
-                    continue
-                child = b if a == parent else a
-                if child in placed:
-                    raise ValueError(f'joint {j["name"]}: closes a loop; MuJoCo needs a tree')
-                if child != b:
-                    flipped.add(j["name"])
-                joint_of[child] = j
-                children.setdefault(parent, []).append(child)
-                placed.add(child)
-                queue.append(child)
-        unplaced = [n for n in unplaced if n not in placed]
-
-    def body(name, parent_com, ind):
-        s = seg[name]
-        com = cv(s["com"])
-        rot_j = quat_matrix(s["quat"])   # principal -> world, jME axes
-        rot = np.array(C) @ rot_j        # principal (jME) -> world, MuJoCo axes
-        q = np.zeros(4)
-        mujoco.mju_mat2Quat(q, rot.flatten())
-        local = (np.array(s["vertices"], float) - np.array(s["com"], float)) @ rot_j
-        lo, hi = local.min(0), local.max(0)
-        out = [f'{ind}<body name="{name}" pos="{f3(com - parent_com)}">']
-        j = joint_of.get(name)
-        if j is None:
-            out.append(f'{ind}  <freejoint name="root-{name}"/>')
-        else:
-            desc, pos = j["description"], f3(cv(j["pivot"]) - com)
-            if desc["type"] == "point":
-                out.append(f'{ind}  <joint name="{j["name"]}" type="ball" pos="{pos}"/>')
-            elif desc["type"] == "cone":
-                r = max(desc["limit-xz"], desc["limit-xy"])
-                out.append(f'{ind}  <joint name="{j["name"]}" type="ball" pos="{pos}"'
-                           f' limited="true" range="0 {r!r}"/>')
-            elif desc["type"] == "hinge":
-                lo_h, hi_h = desc["limit"]
-                if j["name"] in flipped:
-                    lo_h, hi_h = -hi_h, -lo_h
-                out.append(f'{ind}  <joint name="{j["name"]}" type="hinge" pos="{pos}"'
-                           f' axis="{f3(cv(j["world-axis"]))}" limited="true"'
-                           f' range="{lo_h!r} {hi_h!r}"/>')
-            else:
-                raise ValueError(f'joint {j["name"]}: unknown type {desc["type"]}')
-        out.append(f'{ind}  <inertial pos="0 0 0" quat="{f3(q)}" mass="{s["mass"]!r}"'
-                   f' diaginertia="{f3(s["moments"])}"/>')
-        out.append(f'{ind}  <geom name="g-{name}" type="box" pos="{f3(rot @ ((lo + hi) / 2))}"'
-                   f' quat="{f3(q)}" size="{f3((hi - lo) / 2)}"/>')
-        for ch in children.get(name, []):
-            out += body(ch, com, ind + "  ")
-        out.append(f"{ind}</body>")
-        return out
-
-    lines = []
-    for r in roots:
-        lines += body(r, np.zeros(3), "    ")
-    return f"""<mujoco model="creature">
-  <compiler angle="radian"/>
-  <option timestep="{dt!r}" integrator="implicitfast" gravity="0 0 {-G}"/>
-  <default><geom friction="{friction!r} 0.005 0.0001"/></default>
-  <worldbody>
-    <geom name="floor" type="plane" size="0 0 1"/>
-{chr(10).join(lines)}
-  </worldbody>
-</mujoco>"""
-
-
-def drop(xml, seconds, series=None):
+def drop(m, d, seconds, series=None):
     """Peak finite-difference speed of every body's centre of mass, and when.
     With a dict `series`, also fills it: "time" -> [s], body -> [m/s] per
     step, "root" -> the name of the body hung on the world."""
-    m = mujoco.MjModel.from_xml_string(xml)
-    d = mujoco.MjData(m)
-    mujoco.mj_forward(m, d)
     dt = m.opt.timestep
     prev = d.xipos.copy()
     peak, when = np.zeros(m.nbody), np.zeros(m.nbody)
@@ -337,17 +267,16 @@ def main():
     if mujoco is None:
         print("quadruped_whip.py needs the mujoco package and numpy (see scripts/compare/README.md); skipped")
         return 0
-    export = json.load(open(a.export))
-    ys = [v[1] for s in export["segments"] for v in s["vertices"]]
-    limit = math.sqrt(2 * G * (1 + max(ys) - min(ys))) + 1
     result = {}
+    limit = None
     print(f"{'friction':>8}  {'fastest body':<18} {'peak m/s':>8} {'time s':>7}  {'limit m/s':>9}")
     series = None
     for f in [float(x) for x in a.frictions.split(",")]:
         first = a.plot and series is None
         if first:
             series = {}
-        res = drop(build_xml(export, f, a.dt), a.seconds, series if first else None)
+        m, d, limit = build(a.export, f, a.dt)
+        res = drop(m, d, a.seconds, series if first else None)
         if first:
             series["friction"] = f
         body = max(sorted(res), key=lambda n: res[n][0])
@@ -356,7 +285,8 @@ def main():
         result[repr(f)] = {"fastest": round(speed, 3), "body": body, "time": round(t, 3),
                            "speeds": {n: round(v[0], 3) for n, v in res.items()}}
     doc = {"source": f"MuJoCo {mujoco.__version__}, implicitfast, dt {a.dt:g} s, {a.seconds:g} s,"
-                     " friction on every geom and the floor, parent-child contacts off",
+                     " cortex's MJCF export lifted 1 m, muscles off,"
+                     " friction on every geom and the floor, joined bodies' contacts off",
            "command": shlex.join([sys.executable] + sys.argv),
            "export": os.path.basename(a.export),
            "frictions": result}
