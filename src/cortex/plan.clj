@@ -164,7 +164,11 @@
         spatials (mapv rigid-body/body-spatial body-nodes)
         bodies (mapv (fn [^Node n ^Spatial s]
                        (assoc (rigid-body/plan-rigid-body n)
-                              :id (.getName n) :path (path-of creature s)))
+                              :id (.getName n) :path (path-of creature s)
+                              ;; where its body is made: the Spatial's world transform
+                              :position (segment/vector-data (.getWorldTranslation s))
+                              :rotation (segment/quaternion-data (.getWorldRotation s))
+                              :scale (segment/vector-data (.getWorldScale s))))
                      body-nodes spatials)
         by-name (into {} (map (juxt :name identity)) bodies)
         excluded (set (names-of left))

@@ -149,23 +149,10 @@
 
 (defn mesh-triangles
   "The triangles of `geom`'s mesh at its world scale, in its own axes,
-  as [[x y z] [x y z] [x y z]]s."
+  as [[x y z] [x y z] [x y z]]s: cortex.shapes/triangles, which fits
+  the shapes from the same triangles."
   [^Geometry geom]
-  (let [mesh (.getMesh geom)
-        ^Vector3f scale (.getWorldScale geom)
-        positions (.getFloatBuffer mesh VertexBuffer$Type/Position)
-        index (.getIndexBuffer mesh)
-        n-vertices (if positions (quot (.limit positions) 3) 0)
-        vertex (fn [i] (let [i (int i)]
-                         [(* (.x scale) (.get positions (* 3 i)))
-                          (* (.y scale) (.get positions (+ 1 (* 3 i))))
-                          (* (.z scale) (.get positions (+ 2 (* 3 i))))]))
-        corners (if index
-                  (map #(.get index (int %)) (range (.size index)))
-                  (range n-vertices))]
-    (if (and positions (= com.jme3.scene.Mesh$Mode/Triangles (.getMode mesh)))
-      (map #(mapv vertex %) (partition 3 corners))
-      [])))
+  (shapes/triangles geom))
 
 (defn vector-data
   "`v`, a Vector3f, as plan data: [x y z], doubles of its floats."

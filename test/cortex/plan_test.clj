@@ -71,6 +71,9 @@
                   (util/node-seq c))
           "planning made no rigid body")
       (is (pos? (count (:segments p))))
+      (is (every? #(or (:kept? %) (and (= 3 (count (:position %))) (= 4 (count (:rotation %)))))
+                  (:segments p))
+          "every segment the plan makes says where it is")
       (is (= (count (:segments p)) (count (set (map :id (:segments p))))) "segment ids are unique"))))
 
 (deftest a-plan-through-text-builds-the-same-creature
