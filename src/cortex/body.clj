@@ -29,22 +29,13 @@
 
 (set! *warn-on-reflection* true)
 
-(defmacro ^:private export
-  "Define each of `syms` here as the var of that name in namespace
-  `from`, with its doc and arglists: the seed's names stay
-  cortex.body's, wherever the code now lives."
-  [from & syms]
-  `(do ~@(for [s syms
-               :let [v (resolve (symbol (name from) (name s)))]]
-           `(def ~(with-meta s {:doc (:doc (meta v)) :arglists (list 'quote (:arglists (meta v)))})
-              ~(symbol (name from) (name s))))))
-
-(export cortex.segment max-hull-points mesh-points sphere-directions simplify-hull
+;; the seed's names stay cortex.body's, wherever the code now lives
+(util/export-vars cortex.segment max-hull-points mesh-points sphere-directions simplify-hull
         hull-from-points mass segments segment-name segment-pose default-options)
-(export cortex.nearest joints segment-index nearest-segments targets-near joint-targets
+(util/export-vars cortex.nearest joints segment-index nearest-segments targets-near joint-targets
         tolerance segment-sides fmt-length joint-doubts duplicate-doubts naming-doubts
         overlap-warnings limit-warnings)
-(export cortex.joint read-description read-joint joint-dispatch joint-types body-frame
+(util/export-vars cortex.joint read-description read-joint joint-dispatch joint-types body-frame
         common-joint-keys joint-keys check-keys jbullet-hinge-limits cone-engine-angles
         pivot pivot-in-world joint-gap connect)
 

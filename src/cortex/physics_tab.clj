@@ -22,23 +22,15 @@
             [cortex.constraint :as constraint]
             [cortex.plan :as plan]
             [cortex.rigid-body :as rigid-body]
-            [cortex.segment :as segment])
+            [cortex.segment :as segment]
+            [cortex.util :as util])
   (:import (com.jme3.scene Node)))
 
 (set! *warn-on-reflection* true)
 
-(defmacro ^:private export
-  "Define each of `syms` here as the var of that name in namespace
-  `from`, with its doc and arglists."
-  [from & syms]
-  `(do ~@(for [s syms
-               :let [v (resolve (symbol (name from) (name s)))]]
-           `(def ~(with-meta s {:doc (:doc (meta v)) :arglists (list 'quote (:arglists (meta v)))})
-              ~(symbol (name from) (name s))))))
-
-(export cortex.rigid-body rigid-body rigid-body-constraint rigid-body-objects
+(util/export-vars cortex.rigid-body rigid-body rigid-body-constraint rigid-body-objects
         constraint-objects body-spatial collision-shape rigid-body! rigid-bodies!)
-(export cortex.constraint constraint-frame limits hinge-limit locked constraint-joint
+(util/export-vars cortex.constraint constraint-frame limits hinge-limit locked constraint-joint
         constraint! constraints! world-settings gravity substep-length
         simulation-settings simulation-key)
 

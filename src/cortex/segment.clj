@@ -196,9 +196,10 @@
 (defn inertia-plan
   "How `geom` is to be massed: {:source :mesh :centre c :moments m
   :rotation q (or nil when the body is the segment's own frame)}, or
-  {:source :box} when its mesh encloses no volume."
-  [^Geometry geom mass]
-  (let [triangles (mesh-triangles geom)]
+  {:source :box} when its mesh encloses no volume. `triangles`, when
+  given, are its `mesh-triangles`."
+  ([geom mass] (inertia-plan geom mass (mesh-triangles geom)))
+  ([^Geometry geom mass triangles]
     (if-let [{:keys [centre inertia]} (mass/mesh-properties triangles mass)]
       (let [size (apply max 1e-9 (map #(Math/abs (double %)) (flatten triangles)))
             off-diagonal (max (Math/abs (double (get-in inertia [0 1])))
@@ -424,11 +425,12 @@
   see `hull-points`) when its `shape` property or else :shapes of
   `opts` says :hull, or when no piece of its mesh is a primitive (see
   cortex.shapes/segment-shape); else the primitives its pieces are."
-  [^Geometry geom opts hull]
-  (if (= :hull (or (shape-property geom) (:shapes opts)))
-    hull
-    (let [s (fitted-shape (shapes/triangles geom))]
-      (if (= :hull (:type s)) hull s))))
+  ([geom opts hull] (shape-choice geom opts hull (delay (mesh-triangles geom))))
+  ([^Geometry geom opts hull triangles]
+   (if (= :hull (or (shape-property geom) (:shapes opts)))
+     hull
+     (let [s (fitted-shape @triangles)]
+       (if (= :hull (:type s)) hull s)))))
 
 (defn plan-segment
   "What segment `geom` will be, as plain data: {:name (see
@@ -447,7 +449,9 @@
         (merge default-options opts)]
     (check-placement! "segment" geom)
     (let [m (mass geom)
-          inertia (if (= :box mass-properties) {:source :box} (inertia-plan geom m))
+          ;; read once: for the mass properties and for the shapes
+          triangles (delay (mesh-triangles geom))
+          inertia (if (= :box mass-properties) {:source :box} (inertia-plan geom m @triangles))
           _ (check-solid! geom inertia)
           points (hull-points geom)
           hull {:type :hull :points (mapv vector-data points)}]
@@ -461,7 +465,7 @@
        :rotation (quaternion-data (.getWorldRotation geom))
        :scale (vector-data (.getWorldScale geom))
        :inertia inertia
-       :shape (or given (shape-choice geom opts hull))}))))
+       :shape (or given (shape-choice geom opts hull triangles))}))))
 
 (defn build-segment!
   "Give `geom` the rigid body its plan `p` (see `plan-segment`) says.

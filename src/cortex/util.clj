@@ -7,7 +7,7 @@
   Entry points: `load-blender-model` (the reader's, once it is loaded),
   `asset-manager`, `box`, `sphere`, `nodify`, `node-seq`,
   `blender-to-jme`, `jme-to-blender`, `blender-axes`, `vec3`,
-  `finite?`, `edit-distance`, `near-miss` (the key an unknown key
+  `finite?`, `export-vars`, `edit-distance`, `near-miss` (the key an unknown key
   misspells), `light-up-everything`, `display-dilated-time`,
   `println-repl`."
   ;; the physics engine (org/engine.org): native Bullet loads its library here
@@ -41,6 +41,15 @@
      (doseq [^Spatial child children]
        (.attachChild node child))
      node)))
+
+(defmacro export-vars
+  "Define each of `syms` in the calling namespace as the var of that name
+  in namespace `from` (already loaded), with its doc and arglists."
+  [from & syms]
+  `(do ~@(for [s syms
+               :let [v (resolve (symbol (name from) (name s)))]]
+           `(def ~(with-meta s {:doc (:doc (meta v)) :arglists (list 'quote (:arglists (meta v)))})
+              ~(symbol (name from) (name s))))))
 
 (defn map-vals
   "`m` with `f` applied to each of its values."

@@ -209,13 +209,6 @@
 
 (defn- vec3-of [^Vector3f v] [(.x v) (.y v) (.z v)])
 
-(defn- in-creature
-  [^Node creature f]
-  (try (f)
-       (catch clojure.lang.ExceptionInfo e
-         (throw (ex-info (str "creature " (pr-str (.getName creature)) ", " (ex-message e))
-                         (assoc (ex-data e) :creature (.getName creature)) e)))))
-
 (defn plan-eyes
   "What each eye of `creature` (the children of its \"eyes\" node) will
   be, as plan data: {:name :spec (see `eye-spec`) :segment (its
@@ -228,7 +221,7 @@
   one name."
   [^Node creature index tolerance id-of]
   (let [planned (mapv (fn [^Spatial m]
-                        (in-creature
+                        (segment/in-creature
                          creature
                          #(let [spec (eye-spec m)
                                 {:keys [geom name distance]} (nearest! index tolerance m)]
