@@ -1,4 +1,4 @@
-;; Generated from org/engine.org by lein tangle: edit the chapter, not this file.
+;; Generated from org/bench.org by lein tangle: edit the chapter, not this file.
 (ns cortex.engine-speed
   "Build time and step throughput on the engine of this classpath, and
   both engines side by side (see org/engine.org):

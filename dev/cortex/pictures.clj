@@ -1,4 +1,4 @@
-;; Generated from org/proprioception.org by lein tangle: edit the chapter, not this file.
+;; Generated from org/sim.org by lein tangle: edit the chapter, not this file.
 (ns cortex.pictures
   "Pictures for the book, drawn from simulations with java.awt.
   Entry point: `-main` writes org/images/proprioception.png."

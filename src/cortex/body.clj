@@ -1,4 +1,4 @@
-;; Generated from org/body.org by lein tangle: edit the chapter, not this file.
+;; Generated from org/plan.org by lein tangle: edit the chapter, not this file.
 (ns cortex.body
   "Give a creature loaded from Blender a physical body: a rigid body for
   every segment and a Bullet joint for every joint marker, as the

@@ -1,4 +1,4 @@
-;; Generated from org/physics-tab.org by lein tangle: edit the chapter, not this file.
+;; Generated from org/rigid-bodies.org by lein tangle: edit the chapter, not this file.
 (ns cortex.constraint
   "Blender's rigid body constraints (the Physics tab) and its Rigid Body
   World: each constraint as plan data (`plan-constraint`) and the

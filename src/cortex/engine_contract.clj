@@ -1,4 +1,4 @@
-;; Generated from org/engine.org by lein tangle: edit the chapter, not this file.
+;; Generated from org/engine-contract.org by lein tangle: edit the chapter, not this file.
 (ns cortex.engine-contract
   "What a physics engine gives the rest of cortex: the public vars of
   `cortex.engine`, as data. Each engine's namespace defines them all;

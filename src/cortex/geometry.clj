@@ -1,4 +1,4 @@
-;; Generated from org/engine.org by lein tangle: edit the chapter, not this file.
+;; Generated from org/geometry.org by lein tangle: edit the chapter, not this file.
 (ns cortex.geometry
   "Geometry of point sets, as plain data: the volume of a convex hull.
 

@@ -1,4 +1,4 @@
-;; Generated from org/physics-tab.org by lein tangle: edit the chapter, not this file.
+;; Generated from org/rigid-bodies.org by lein tangle: edit the chapter, not this file.
 (ns cortex.rigid-body
   "Blender's rigid bodies (the Physics tab): each object's settings, read
   from the scene graph, as plan data (`plan-rigid-body`: shape, mass,

@@ -1,4 +1,4 @@
-;; Generated from org/muscle.org by lein tangle: edit the chapter, not this file.
+;; Generated from org/strength.org by lein tangle: edit the chapter, not this file.
 (ns cortex.strength
   "A joint's default strength and PD gains, from masses, distances and
   moments of inertia alone: what cortex.muscle works out from a built

@@ -1,4 +1,4 @@
-;; Generated from org/vision.org by lein tangle: edit the chapter, not this file.
+;; Generated from org/eyes.org by lein tangle: edit the chapter, not this file.
 (ns cortex.vision
   "Eyes as a creature's designer placed them: the children of its
   \"eyes\" node, Blender cameras or empties with an `eye` property, each

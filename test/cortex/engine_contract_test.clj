@@ -1,4 +1,4 @@
-;; Generated from org/engine.org by lein tangle: edit the chapter, not this file.
+;; Generated from org/engine-contract.org by lein tangle: edit the chapter, not this file.
 (ns cortex.engine-contract-test
   (:require [clojure.test :refer [deftest is testing]]
             [cortex.engine :as engine]

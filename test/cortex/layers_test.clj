@@ -2,7 +2,8 @@
 (ns cortex.layers-test
   (:require [clojure.java.shell :as sh]
             [clojure.string :as str]
-            [clojure.test :refer [deftest is]]))
+            [clojure.test :refer [deftest is testing]]
+            [cortex.tangle :as tangle]))
 
 (set! *warn-on-reflection* true)
 
@@ -132,3 +133,58 @@
     (is (< 10 (count tools)) "the tools are found")
     (doseq [f tools]
       (is (not-any? #(str/ends-with? (name %) "-test") (required f)) (str f)))))
+
+(def ^:private tests-reaching-ahead
+  "[test namespace, namespace of a later chapter] a test may require,
+  and why."
+  {["cortex.shapes-test" "cortex.body"] "shapes are checked on whole bodies, built by body!"
+   ["cortex.body-test" "cortex.body"] "the seed's functions, tested where the seed's chapter explains them"
+   ["cortex.designer-test" "cortex.body"] "designers' creatures, built by body!"
+   ["cortex.designer-test" "cortex.drops"] "designers' creatures, dropped to rest"
+   ["cortex.plan-test" "cortex.drops"] "a plan built from text falls as body!'s creature does"
+   ["cortex.plan-test" "cortex.sim"] "... stepped, observation by observation"
+   ["cortex.plan-test" "cortex.muscle"] "a plan's muscles are those cortex.muscle sizes on the built body"
+   ["cortex.plan-test" "cortex.physics-tab"] "the plan of a Physics-tab creature is physics-body!'s"
+   ["cortex.muscle-test" "cortex.sim"] "muscles are checked by stepping creatures"})
+
+(defn- reading-order
+  "The chapters of the reading list, in order, as file names."
+  []
+  (map second (re-seq #"(?m)^\s*\d+\.\s+\[\[file:([\w.-]+\.org)\]" (slurp "org/index.org"))))
+
+(defn- tangled-clj
+  "The Clojure files (as paths from the project's root) `chapter` tangles."
+  [chapter]
+  (let [root (.getCanonicalPath (java.io.File. "."))]
+    (distinct
+     (for [b (tangle/blocks chapter (slurp (str "org/" chapter)))
+           :let [t (get-in b [:args :tangle])]
+           :when (and t (str/ends-with? t ".clj"))
+           :let [f (.getCanonicalPath (java.io.File. (java.io.File. "org") ^String t))]
+           :when (str/starts-with? f root)]
+       (subs f (inc (count root)))))))
+
+(deftest chapters-require-only-earlier-chapters
+  (let [order (reading-order)
+        files (for [[i c] (map-indexed vector order), f (tangled-clj c)
+                    :let [form (ns-form (java.io.File. ^String f))]]
+                {:chapter c :place i :file f :ns (str (second form))
+                 :requires (cortex-requires form)})
+        owner (reduce (fn [m {:keys [ns place chapter]}]
+                        (if (contains? m ns) m (assoc m ns [place chapter])))
+                      {"cortex.engine" [(.indexOf ^java.util.List order "engine-contract.org")
+                                        "engine-contract.org"]}
+                      (sort-by :place files))]
+    (is (< 30 (count order)) "the reading list is found")
+    (is (< 80 (count files)) "the chapters' files are found")
+    (doseq [{:keys [chapter place file ns requires]} files
+            r requires
+            :let [[p c] (owner r)]
+            :when (and p (> (long p) (long place))
+                       (not (contains? tests-reaching-ahead [ns r])))]
+      (is false (str chapter " (" file ", " ns ") requires " r
+                     ", which " c " writes later in the book")))
+    (testing "every reach ahead listed is still made"
+      (doseq [[[t r] _] tests-reaching-ahead]
+        (is (some #(and (= t (:ns %)) (some #{r} (:requires %))) files)
+            (str t " no longer requires " r ": take it off the list"))))))

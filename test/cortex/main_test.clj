@@ -8,7 +8,8 @@
             [cortex.util :as util])
   (:import (com.jme3.math Vector3f)
            (com.jme3.renderer Camera)
-           (java.awt.image BufferedImage)))
+           (java.awt.image BufferedImage)
+           (javax.imageio ImageIO)))
 
 (set! *warn-on-reflection* true)
 
@@ -149,3 +150,16 @@
         (is (> y80 (+ y1 20))))
       (is (not= (vec (.getRGB ^BufferedImage (:image (get @seen 1)) 0 0 320 240 nil 0 320))
                 (vec (.getRGB ^BufferedImage (:image (get @seen 80)) 0 0 320 240 nil 0 320)))))))
+
+(deftest lein-run-with-eyes
+  (let [plan (main/plan ["--eyes" "-s" "0.2" "-r" "160x120"] false)
+        out (str (System/getProperty "java.io.tmpdir") "/cortex-eyes-" (System/nanoTime))]
+    (is (= "worm-eyes" (:creature plan)))
+    (is (:eyes? plan))
+    (is (= "q" (:creature (main/plan ["q.blend" "--eyes"] false))))
+    (with-out-str (#'main/show-offscreen! (assoc plan :out out)))
+    (let [frames (render/frames-in out)
+          ^BufferedImage last-frame (ImageIO/read ^java.io.File (last frames))]
+      (is (= 12 (count frames)))
+      (is (= 160 (.getWidth last-frame)))
+      (is (< 120 (.getHeight last-frame)) "the eyes' strip is under the world"))))

@@ -6,7 +6,6 @@
             [clojure.test :refer [deftest is testing]]
             [cortex.blender-test :as bt]
             [cortex.body :as body]
-            [cortex.main :as main]
             [cortex.render :as render]
             [cortex.sense :as sense]
             [cortex.sim :as sim]
@@ -310,19 +309,6 @@
         (is (close? (aget ^floats (:depth near) (+ 32 (* 32 64))) 2.75 0.0275))
         (is (close? (aget ^floats (:depth far) (+ 32 (* 32 64))) 5.75 0.0575)))
       (finally (sim/destroy! s)))))
-
-(deftest lein-run-with-eyes
-  (let [plan (main/plan ["--eyes" "-s" "0.2" "-r" "160x120"] false)
-        out (str (System/getProperty "java.io.tmpdir") "/cortex-eyes-" (System/nanoTime))]
-    (is (= "worm-eyes" (:creature plan)))
-    (is (:eyes? plan))
-    (is (= "q" (:creature (main/plan ["q.blend" "--eyes"] false))))
-    (with-out-str (#'main/show-offscreen! (assoc plan :out out)))
-    (let [frames (render/frames-in out)
-          ^BufferedImage last-frame (ImageIO/read ^java.io.File (last frames))]
-      (is (= 12 (count frames)))
-      (is (= 160 (.getWidth last-frame)))
-      (is (< 120 (.getHeight last-frame)) "the eyes' strip is under the world"))))
 
 (deftest the-readme-example-runs
   (let [readme (slurp "README.md")

@@ -1,4 +1,4 @@
-;; Generated from org/export.org by lein tangle: edit the chapter, not this file.
+;; Generated from org/geometry.org by lein tangle: edit the chapter, not this file.
 (ns cortex.export.geometry
   "The exporters' geometry: vectors [x y z] and matrices (rows) of
   doubles, quaternions [x y z w], the change from jME's Y-up axes to
