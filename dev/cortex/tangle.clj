@@ -41,11 +41,19 @@
         n (if (seq widths) (apply min widths) 0)]
     (map #(if (str/blank? %) "" (subs % n)) lines)))
 
+(defn- switches
+  "The switches before a block's header arguments, such as -i in
+  \"-i :tangle ../a.java\"."
+  [args]
+  (set (take-while #(not (str/starts-with? % ":"))
+                   (remove str/blank? (str/split (str/trim (or args "")) #"\s+")))))
+
 (defn blocks
   "The source blocks of an org document, in order, as maps of
   :language, :args (header arguments), :line (where the block begins,
-  counting from 1) and :body (its text). `source` names the document in
-  errors."
+  counting from 1) and :body (its text, without the indentation its
+  lines share unless the block has org's -i switch). `source` names the
+  document in errors."
   [source text]
   (loop [lines (map-indexed (fn [i l] [(inc i) l]) (str/split-lines text))
          open nil
@@ -54,11 +62,14 @@
       (if open
         (if (re-matches #"(?i)\s*#\+end_src\s*" line)
           (recur more nil
-                 (conj out (assoc open :body
-                                  (str/join "\n" (dedent (:lines open))))))
+                 (conj out (assoc (dissoc open :keep-indentation?) :body
+                                  (str/join "\n" (cond-> (:lines open)
+                                                   (not (:keep-indentation? open)) dedent)))))
           (recur more (update open :lines conj (unescape line)) out))
         (if-let [[_ lang args] (re-matches #"(?i)\s*#\+begin_src\s+(\S+)(.*)" line)]
-          (recur more {:language lang :args (header-args args) :line n :lines []} out)
+          (recur more {:language lang :args (header-args args) :line n :lines []
+                       :keep-indentation? (contains? (switches args) "-i")}
+                 out)
           (recur more nil out)))
       (if open
         (throw (ex-info (str source ":" (:line open)

@@ -25,7 +25,13 @@
     (testing "common indentation and org's comma escapes are removed"
       (is (= "(ns x)\n  (def y 1)\n* not a heading" (:body a))))
     (is (= 2 (:line a)))
-    (is (= {} (:args b)))))
+    (is (= {} (:args b))))
+  (testing "org's -i switch keeps a block's indentation, and is no header argument"
+    (let [[a] (tangle/blocks "x.org" (str "#+begin_src java -i :tangle ../A.java\n"
+                                          "    int x;\n"
+                                          "#+end_src\n"))]
+      (is (= "    int x;" (:body a)))
+      (is (= {:tangle "../A.java"} (:args a))))))
 
 (deftest unterminated-block
   (let [e (try (tangle/blocks "broken.org" "text\n#+begin_src clojure\n(x)\n")
