@@ -60,7 +60,7 @@
   cortex.blender.scene/scene-data's :warnings)."
   "blender-warnings")
 
-(defn read-blend
+(defn ^:api read-blend
   "Read a .blend file into data: the parsed file under :file (header,
   blocks, SDNA) and the scene under :scene-data (see
   cortex.blender.scene/scene-data). `source` is a path, File,
@@ -77,7 +77,7 @@
               (let [bf (file/parse name (read-all source))]
                 {:file bf :scene-data (scene/scene-data bf opts)})))))
 
-(defn scenes
+(defn ^:api scenes
   "The scenes of the .blend file at `source` (a path, File, InputStream
   or bytes): for each, {:name :objects :meshes :current?}, :objects
   and :meshes being how many objects and mesh objects it holds and
@@ -112,14 +112,14 @@
     (load-bytes (.getManager info) name
                 (guarded name #(with-open [in (.openStream info)] (.readAllBytes in))))))
 
-(defn register-loader!
+(defn ^:api register-loader!
   "Make `am` load .blend files with cortex's reader, over any loader
   (jme3-blender's) registered for them before."
   [^AssetManager am]
   (.registerLoader am cortex.BlendLoader (into-array String ["blend"]))
   am)
 
-(defn load-blender-model
+(defn ^:api load-blender-model
   "Load a Blender model as a jME Node. `model` is an asset name (such as
   \"Models/test-creature/worm.blend\", found on the classpath or under
   assets/) or the path of a .blend file; `am` the asset manager

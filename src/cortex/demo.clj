@@ -31,12 +31,12 @@
 (def hand-path "Models/test-creature/hand.blend")
 (def worm-path "Models/test-creature/worm.blend")
 
-(defn hand
+(defn ^:api hand
   "The hand, as Blender describes it: a palm and five fingers."
   []
   (blender/load-blender-model hand-path))
 
-(defn worm
+(defn ^:api worm
   "The worm: two segments and one joint."
   []
   (blender/load-blender-model worm-path))
@@ -141,7 +141,7 @@
                      (.setShadowIntensity 0.45)))
     world))
 
-(defn stage
+(defn ^:api stage
   "A world showing `creature` (a built body) on a floor `drop` units
   under its lowest point, lit, with the camera framing the creature and
   the floor beneath it, gravity on and the step fixed at 1/60 s.

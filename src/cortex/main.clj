@@ -291,7 +291,7 @@
               (show-offscreen! plan))
           (throw e))))))
 
-(defn -main
+(defn ^:api -main
   "lein run [options]: see `cli-options`, or lein run --help."
   [& args]
   (let [{:keys [action message] :as p} (plan args (render/display?))

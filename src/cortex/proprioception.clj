@@ -272,7 +272,7 @@
   [sensors]
   (persistent! (reduce (fn [m s] (assoc! m (:name s) (joint-state s))) (transient {}) sensors)))
 
-(defn proprioception
+(defn ^:api proprioception
   "Every joint of `creature` (built by cortex.body/body!), by the name
   of its joint empty: its state now (see the namespace doc). Radians
   and radians per second."

@@ -130,7 +130,7 @@
                                             ", not a function of an observation"))))))
     s))
 
-(defn check-specs!
+(defn ^:api check-specs!
   "Check every spec of `specs` (see `check-spec!`) before any runs;
   return them with their defaults."
   [specs]
@@ -259,7 +259,7 @@
                 traj (assoc :trajectory traj))))))
       (finally (sim/destroy! sim)))))
 
-(defn rollout
+(defn ^:api rollout
   "Run one rollout of `spec` (see the chapter for its keys) on this
   thread; its result as plain data. Bad specs are ex-infos naming the
   field; a failure while running is thrown."
@@ -275,7 +275,7 @@
                                (pr-str (dissoc (ex-data e) :spec))))
     (.getCause e) (assoc :cause (str (ex-message (.getCause e))))))
 
-(defn try-rollout
+(defn ^:api try-rollout
   "The result of the checked spec `s`, or {:spec s :error ...} when
   running it throws."
   [s]
@@ -301,7 +301,7 @@
   ^long []
   (.availableProcessors (Runtime/getRuntime)))
 
-(defn rollouts
+(defn ^:api rollouts
   "Run every spec of `specs` (see `rollout`) on a fixed pool of
   :threads threads (default: one per processor); their results in the
   order of `specs`, each equal to what `rollout` returns for it alone.
@@ -322,7 +322,7 @@
              (mapv #(.get ^Future %) futures))
            (finally (.shutdownNow p))))))))
 
-(def columns
+(def ^:api columns
   "The columns of a result's row: [name type], type one of :long,
   :double, :boolean, :string; every column may be empty (nil)."
   [["index" :long] ["id" :string] ["creature" :string] ["controller" :string]
@@ -338,7 +338,7 @@
             *print-namespace-maps* false]
     (pr-str x)))
 
-(defn flat-row
+(defn ^:api flat-row
   "The values of `columns` for `result`, the `index`-th."
   [index {:keys [spec distance displacement energy fell? fell-at max-tilt steps error] :as result}]
   (let [{:keys [id creature controller params seconds seed]} spec

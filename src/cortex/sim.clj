@@ -52,7 +52,7 @@
     (PhysicsSpace. (Vector3f. -10000 -10000 -10000) (Vector3f. 10000 10000 10000)
                    PhysicsSpace$BroadphaseType/DBVT))))
 
-(defn floor
+(defn ^:api floor
   "A static grey box named \"floor\", 400 by 400 units (room for a
   hundred-segment chain), its top at `height`, of friction `friction`
   (0.5, Bullet's default, when not given). `spec` is the height, or
@@ -207,7 +207,7 @@
                            " loaded: (require 'cortex.sight) first")
                       {}))))
 
-(defn simulation
+(defn ^:api simulation
   "A simulation of `creature` (a creature Node; given its body with
   cortex.body/body! unless it has one) in a new PhysicsSpace, with
   `opts`: :gravity [x y z] (default [0 -9.81 0]), :floor (height of
@@ -267,12 +267,12 @@
   [sim]
   (:solver sim))
 
-(defn steps
+(defn ^:api steps
   "How many steps `sim` has taken."
   ^long [{:keys [^longs steps]}]
   (aget steps 0))
 
-(defn sim-time
+(defn ^:api sim-time
   "Simulated seconds so far: steps / 60."
   ^double [sim]
   (/ (double (steps sim)) 60.0))
@@ -311,7 +311,7 @@
 
 (declare sync!)
 
-(defn observe
+(defn ^:api observe
   "What `sim` senses now: :time, and each of `parts` (by default its
   :observe): :joints (proprioception), :segments ({name {:position
   :rotation :velocity :angular-velocity}}, jME's world axes), :touch and,
@@ -329,7 +329,7 @@
                                            (transient {}) segments)))
      (contains? parts :touch) (assoc :touch (touch/contacts space segment-names object-names))))))
 
-(defn step!
+(defn ^:api step!
   "Apply `actions` (see cortex.muscle; nil or {} for none) for one step,
   advance `sim` by exactly 1/60 s and return the observation (see
   `observe`). Bad actions throw, naming the joint, before anything is
@@ -346,7 +346,7 @@
    (aset steps 0 (inc (aget steps 0)))
    (observe sim)))
 
-(defn last-efforts
+(defn ^:api last-efforts
   "The torques the last `step!` of `sim` applied, clamped, by joint name
   (see cortex.muscle/efforts: N.m for a hinge, [x y z] in the joint's
   frame, Blender's axes, otherwise); nil before the first step and after
@@ -356,7 +356,7 @@
   [{:keys [^objects last-efforts]}]
   (aget last-efforts 0))
 
-(defn sync!
+(defn ^:api sync!
   "Copy every body's place and turn to its Geometry, as each
   RigidBodyControl does in a world's frame, and bring the scene graph's
   world transforms up to date. Returns the simulation's root Node."
@@ -367,13 +367,13 @@
   (.updateGeometricState root)
   root)
 
-(defn destroy!
+(defn ^:api destroy!
   "Free `sim`'s physics space, and its eyes' GL context."
   [{:keys [^PhysicsSpace space sight]}]
   (when sight ((:close! (sight-hooks)) sight))
   (.destroy space))
 
-(defn world
+(defn ^:api world
   "A cortex world showing `sim` and stepping it once a frame with the
   actions (controller observation) returns, the observation being the
   last step's (at first, `observe`'s). `setup` (of the world) runs

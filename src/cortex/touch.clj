@@ -24,7 +24,7 @@
     (assoc acc name {:touching (conj touching other)
                      :impulse (+ (double (:impulse entry)) (double impulse))})))
 
-(defn contacts
+(defn ^:api contacts
   "What each segment touched in the last step of `space`: {name
   {:touching #{other-name ...} :impulse summed-normal-impulse}} for
   every name in `segment-names`, a map (an IdentityHashMap is fastest)

@@ -158,7 +158,7 @@
   [f]
   (reset! blend-reader f))
 
-(defn load-blender-model
+(defn ^:api load-blender-model
   "Load a .blend file as a jME Node: `model` is an asset name such as
   \"Models/test-creature/worm.blend\" (under assets/ or on the
   classpath) or a file's path; `am` an AssetManager (the shared one when
@@ -217,7 +217,7 @@
   [make]
   (locking shape-lock (make)))
 
-(defn box
+(defn ^:api box
   "A box with half-extents `x`, `y`, `z`. Options: :name, :color,
   :material (a .j3md with a Color parameter), :position, :rotation,
   :mass (0 is static), :friction and :physical? (false for scenery
@@ -228,7 +228,7 @@
           (locked-shape #(BoxCollisionShape. (Vector3f. x y z)))
           (merge {:name "box"} options))))
 
-(defn sphere
+(defn ^:api sphere
   "A sphere of `radius`, with the same options as `box`."
   ([] (sphere 1))
   ([radius & {:as options}]

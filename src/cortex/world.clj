@@ -197,7 +197,7 @@
         (println (failure-text frames error))
         (flush)))))
 
-(defn world
+(defn ^:api world
   "A jME application with Bullet physics, not yet started.
 
   `root-node` is attached to the root node and its rigid bodies and
@@ -358,7 +358,7 @@
         (when (= n (swap! seen inc))
           (.stop world))))))
 
-(defn run-world!
+(defn ^:api run-world!
   "Run `world` headless (no window, no GPU: jME's null renderer) for
   exactly `frames` frames, blocking until it has stopped and its thread
   has ended. A world without a fixed-step timer gets a 60 fps
@@ -403,7 +403,7 @@
                        {:frames (:frames @world)}))
        :else world))))
 
-(defn start!
+(defn ^:api start!
   "Start `world` on a thread of its own and return it at once; it runs
   until `stop!`, Escape, or a failure, which is printed to the *err* of
   the caller. What the world's thread prints goes to the caller's *out*
@@ -424,7 +424,7 @@
    (.setFrameRate ^AppSettings (:settings @world) (int fps))
    (launch! world context-type true)))
 
-(defn stop!
+(defn ^:api stop!
   "Stop `world` and wait until it has stopped and its thread has ended,
   no longer than `timeout-ms` when given. On the world's own thread,
   only ask it to stop (it does at the end of the frame). A world that is
@@ -437,7 +437,7 @@
        (wait-for-end world timeout-ms)))
    world))
 
-(defn await!
+(defn ^:api await!
   "Wait until a started `world` has ended (stop!, Escape, its window
   closed, a failure) and its thread has finished; with `timeout-ms`, no
   longer than that, returning nil if it is still running then. Throws
