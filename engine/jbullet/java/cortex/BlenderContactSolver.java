@@ -197,6 +197,7 @@ public final class BlenderContactSolver extends ConstraintSolver {
                 frictions.add(f);
             }
         }
+
         // warm starting, from the velocities every row was set up with
         boolean warm = (info.solverMode & com.bulletphysics.dynamics.constraintsolver.SolverMode.SOLVER_USE_WARMSTARTING) != 0;
         for (Row c : contacts) {

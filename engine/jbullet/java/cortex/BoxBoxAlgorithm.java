@@ -217,6 +217,7 @@ public final class BoxBoxAlgorithm extends CollisionAlgorithm {
             add(out, normalOnB, axpy(eb, u, B[j]), best);
             return;
         }
+
         boolean refA = code < 3;
         double[][] R = refA ? A : B;
         double[][] I = refA ? B : A;
@@ -252,6 +253,7 @@ public final class BoxBoxAlgorithm extends CollisionAlgorithm {
             poly = clip(poly, R[s], c + hr[s], 1);
             poly = clip(poly, R[s], c - hr[s], -1);
         }
+
         int count = 0;
         double[][] pts = new double[poly.length][];
         double[] deps = new double[poly.length];
