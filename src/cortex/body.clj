@@ -31,15 +31,15 @@
 
 ;; the seed's names stay cortex.body's, wherever the code now lives
 (util/export-vars cortex.segment max-hull-points mesh-points sphere-directions simplify-hull
-        hull-from-points mass segments segment-name segment-pose default-options)
-(util/export-vars cortex.nearest joints segment-index nearest-segments targets-near joint-targets
+        hull-from-points mass ^:api segments segment-name segment-pose default-options)
+(util/export-vars cortex.nearest ^:api joints segment-index nearest-segments targets-near ^:api joint-targets
         tolerance segment-sides fmt-length joint-doubts duplicate-doubts naming-doubts
         overlap-warnings limit-warnings)
-(util/export-vars cortex.joint read-description read-joint joint-dispatch joint-types body-frame
+(util/export-vars cortex.joint read-description read-joint ^:api joint-dispatch joint-types body-frame
         common-joint-keys joint-keys check-keys jbullet-hinge-limits cone-engine-angles
         pivot pivot-in-world joint-gap connect)
 
-(defn physical!
+(defn ^:api physical!
   "Make every segment of `creature` solid: a rigid body with a convex
   hull shape and the segment's mass, the damping and sleeping thresholds
   of `opts` (see `default-options`). Segments that already have a rigid
@@ -48,7 +48,7 @@
   ([^Node creature opts]
    (plan/build! creature (plan/plan-parts creature opts #{:segments}))))
 
-(defn joints!
+(defn ^:api joints!
   "Join the segments of `creature` with the joints its \"joints\" node
   describes. Call after `physical!`. `opts` (see `default-options`):
   :strict? (default true) makes any doubt about a joint an error listing
@@ -59,7 +59,7 @@
   ([^Node creature opts]
    (plan/build! creature (plan/plan-parts creature opts #{:joints}))))
 
-(defn body!
+(defn ^:api body!
   "Give `creature` its whole physical body: solid segments joined as its
   designer said, and its eyes, when it has an \"eyes\" node, fixed to
   their segments (see cortex.vision/eyes!): `(cortex.plan/plan creature
@@ -107,7 +107,7 @@
      :distances distances
      :limits (select-keys description [:limit :limit-xz :limit-xy :twist])}))
 
-(defn report
+(defn ^:api report
   "What `body!` built of `creature`, as data: {:creature name, :segments
   [{:name :mass :shape (:hull, :box, :sphere, :capsule, :cylinder or
   :compound, with its :pieces) :volume (the shape's), and for a hull
@@ -131,7 +131,7 @@
              :tolerance tolerance}
       (seq eyes) (assoc :eyes (mapv vision/eye-report eyes)))))
 
-(defn segment
+(defn ^:api segment
   "The segment (a Geometry with a rigid body) of `creature` that Blender
   calls `object-name`; the first, for an object with several materials.
   An error names the segments there are when there is none."
@@ -142,7 +142,7 @@
                            (str/join ", " (distinct (map segment-name (segments creature)))))
                       {:creature (.getName creature) :segment object-name}))))
 
-(defn joint-records
+(defn ^:api joint-records
   "The joints `body!` made of `creature`, in order, as maps of :name,
   :type, :description, :physics-joint (the jBullet joint), :geoms (the
   two segments, in order), :segments (their names), :pivot and
@@ -152,7 +152,7 @@
   [^Node creature]
   (:joints (:built (build-record creature))))
 
-(defn joint
+(defn ^:api joint
   "The jBullet joint `body!` made for the joint empty `joint-name`."
   ^PhysicsJoint [^Node creature ^String joint-name]
   (or (:physics-joint (first (filter #(= joint-name (:name %)) (joint-records creature))))

@@ -22,11 +22,11 @@
 
 (set! *warn-on-reflection* true)
 
-(def ^{:arglists '([plan] [plan {:keys [root]}])} urdf
+(def ^{:api true :arglists '([plan] [plan {:keys [root]}])} urdf
   "The URDF document (a string) of `plan`: cortex.export.urdf/urdf."
   urdf/urdf)
 
-(def ^{:arglists '([plan])} meshes
+(def ^{:api true :arglists '([plan])} meshes
   "The OBJ files `mjcf` and `urdf` name for `plan`: cortex.export.geometry/meshes."
   geometry/meshes)
 
@@ -98,7 +98,7 @@
                  :range range}]))))
 
 
-(defn mjcf
+(defn ^:api mjcf
   "The MJCF document (a string) of `plan` (see cortex.plan), its meshes
   named by file (see `meshes`, written beside it). `opts`: :root, the
   segment to hang the rest from (default the heaviest)."
@@ -171,7 +171,7 @@
         (for [{:keys [id]} (:segments plan)]
           [:touch {:name (str "touch/" id) :site (str id "/touch")}])]]))))
 
-(defn write!
+(defn ^:api write!
   "Write `plan` as MJCF to `mjcf-path` and/or URDF to `urdf-path` (nil
   for neither), each with its meshes beside it. `opts` as for `mjcf`.
   Returns the files written."

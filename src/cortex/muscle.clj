@@ -119,7 +119,7 @@
         (assoc sensor :strength strength :inertia (mapv first axes)
                :kp (gain :kp) :kd (gain :kd))))))
 
-(defn muscles
+(defn ^:api muscles
   "The muscles of `creature` (built by cortex.body/body!), by joint name."
   [^Node creature]
   (into {} (for [s (p/sensors creature)] [(:name s) (muscle s)])))
@@ -236,7 +236,7 @@
           :let [m (muscles n)]]
     (apply-torque! m (world-torque m e))))
 
-(defn actuate!
+(defn ^:api actuate!
   "Apply `actions` (see the namespace doc) at the joints of `creature`,
   built by cortex.body/body!, for the next physics step; or at
   `muscles` (see `muscles`), which saves working them out every step.

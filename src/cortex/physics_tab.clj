@@ -34,7 +34,7 @@
         constraint! constraints! world-settings gravity substep-length
         simulation-settings simulation-key)
 
-(defn warnings
+(defn ^:api warnings
   "The warnings, as text, of the Physics tab's part of `creature`'s plan
   (see `build!`): what could not be built as Blender would."
   [^Node creature]
@@ -42,7 +42,7 @@
              :when (= :physics-tab (:kind w))]
          (:message w))))
 
-(defn broken-joints
+(defn ^:api broken-joints
   "The joints of `creature` (built by `physics-body!`) that broke so far:
   constraint object name -> the substep (counted from the world's
   start) after which it broke."
@@ -72,7 +72,7 @@
      {:creature creature :bodies (:bodies built) :joints (:constraints built)
       :warnings (warnings creature) :simulation (:world plan) :broken (:broken built)})))
 
-(defn physics-body!
+(defn ^:api physics-body!
   "Like `cortex.body/body!`, for a creature made in Blender's Physics
   tab: build it (see `build!`, which takes the same `opts`; its
   warnings are logged) and return the creature."
@@ -81,7 +81,7 @@
    (build! creature opts)
    creature))
 
-(defn load-creature
+(defn ^:api load-creature
   "Load the .blend file at `path` as a creature, with cortex's reader,
   which leaves every object's Blender physics on its Node (see
   `rigid-body`, `rigid-body-constraint`) and the scene's Rigid Body

@@ -264,7 +264,7 @@
         tab? (assoc :constraints (:constraints tab)
                     :world (segment/plain (:world tab))
                     :joint-order (vec (:joint-order tab)))))))
-(defn plan
+(defn ^:api plan
   "What `body!` would make of `creature` (a Node loaded from Blender, or
   built in code the same way), as plain data: every segment, joint and
   eye, and the doubts and warnings, decided from the scene graph alone
@@ -370,7 +370,7 @@
             (select-keys old-built [:bodies :constraints :broken])
             (select-keys built [:bodies :constraints :broken]))}))
 
-(defn build!
+(defn ^:api build!
   "Make `creature` physical as `plan` (see `plan`) says: a rigid body for
   each planned segment (a kept one keeps its own), the joints between
   them, the eyes on them; log the plan's warnings; keep the plan and

@@ -96,7 +96,7 @@
         (.setResolution settings (int w) (int h))))
     settings))
 
-(defn run-offscreen!
+(defn ^:api run-offscreen!
   "Run `world` for exactly `frames` frames of 1/60 s, drawing every
   frame with real OpenGL into an offscreen framebuffer (Mesa's EGL
   surfaceless platform: no window, no X server), blocking until it has
@@ -110,7 +110,7 @@
    (world/run-world! world frames {:context-type JmeContext$Type/OffscreenSurface
                                    :timeout-ms timeout-ms})))
 
-(defn start-window!
+(defn ^:api start-window!
   "Open `world` in a window (OpenGL through LWJGL 3) and return it at
   once, the world running on a thread of its own until the window is
   closed, Escape is pressed or cortex.world/stop! is called. Options:
@@ -132,7 +132,7 @@
      (.setVSync false))
    (world/start! world {:context-type JmeContext$Type/Display :fps fps})))
 
-(defn start-offscreen!
+(defn ^:api start-offscreen!
   "Start `world` drawing offscreen (see `run-offscreen!`) and return it
   at once; it runs, as fast as it can, until cortex.world/stop! is
   called. Options: :size [width height] of the frames. Returns the
@@ -240,7 +240,7 @@
   ^File [dir n]
   (io/file dir (format frame-pattern n)))
 
-(defn frames-in
+(defn ^:api frames-in
   "The recorded frames in folder `dir`, in order."
   [dir]
   (->> (.listFiles (io/file dir))
@@ -297,7 +297,7 @@
        ([n done?]
         (when done? (show! n "\n")))))))
 
-(defn record!
+(defn ^:api record!
   "Write every frame `world` draws, from its first, to folder `dir` as
   frame-000001.png, frame-000002.png, ... (see `frame-file`), removing
   frames an earlier recording left there. Options: :progress, a
@@ -355,7 +355,7 @@
       (throw (ex-info (str "ffmpeg failed (exit " exit "): " (str/trim err))
                       {:args args :exit exit})))))
 
-(defn make-videos!
+(defn ^:api make-videos!
   "Turn the frames recorded in folder `dir` (played at `fps` frames a
   second) into NAME.mp4 and NAME.gif beside them, NAME being the
   folder's name unless :name is given; see `gif-args` for :gif-fps and

@@ -44,11 +44,13 @@
 
 (defmacro export-vars
   "Define each of `syms` in the calling namespace as the var of that name
-  in namespace `from` (already loaded), with its doc and arglists."
+  in namespace `from` (already loaded), with its doc and arglists, and
+  any metadata the symbol carries here (^:api marks a re-exported name
+  as part of the public surface)."
   [from & syms]
   `(do ~@(for [s syms
                :let [v (resolve (symbol (name from) (name s)))]]
-           `(def ~(with-meta s {:doc (:doc (meta v)) :arglists (list 'quote (:arglists (meta v)))})
+           `(def ~(with-meta s (merge (meta s) {:doc (:doc (meta v)) :arglists (list 'quote (:arglists (meta v)))}))
               ~(symbol (name from) (name s))))))
 
 (defn map-vals
