@@ -54,7 +54,7 @@
 
 (def ^:private ^Logger logger (Logger/getLogger "cortex.blender"))
 
-(def warnings-key
+(def ^:api warnings-key
   "The user data under which a loaded model's root Node keeps what the
   reader could not do as Blender would (a list of strings; see
   cortex.blender.scene/scene-data's :warnings)."

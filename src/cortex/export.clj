@@ -38,7 +38,7 @@
   "How each joint of `plan` is written: cortex.export.model/joint-dofs."
   model/joint-dofs)
 
-(def ^{:arglists '([plan])} muscles
+(def ^{:api true :arglists '([plan])} muscles
   "Each joint's muscle from the plan: cortex.export.model/muscles."
   model/muscles)
 

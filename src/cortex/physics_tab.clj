@@ -31,8 +31,8 @@
 (util/export-vars cortex.rigid-body rigid-body rigid-body-constraint rigid-body-objects
         constraint-objects body-spatial collision-shape rigid-body! rigid-bodies!)
 (util/export-vars cortex.constraint constraint-frame limits hinge-limit locked constraint-joint
-        constraint! constraints! world-settings gravity substep-length
-        simulation-settings simulation-key)
+        constraint! constraints! ^:api world-settings gravity substep-length
+        ^:api simulation-settings simulation-key)
 
 (defn ^:api warnings
   "The warnings, as text, of the Physics tab's part of `creature`'s plan

@@ -362,7 +362,7 @@
   (check-param! params :phases #(or (nil? %) (and (map? %) (every? finite? (vals %))))
                 "nil or {joint fraction}"))
 
-(defn crawl-gait
+(defn ^:api crawl-gait
   "A controller (see org/rollout.org): the slow arch and quick release
   of the worm's crawl at every hinge (or those in :joints). `params`:
   :frequency (Hz, default 1.5), :amplitude (rad, 0.6), :rise (fraction
@@ -389,7 +389,7 @@
                                       (/ phase up)
                                       (- 1 (/ (- phase up) (- 1 up)))))}]))))))
 
-(defn sine-gait
+(defn ^:api sine-gait
   "A controller (see org/rollout.org): every joint (or those in :joints)
   follows amplitude sin(2 pi (frequency t + k phase)), k its place in
   name order; a hinge as its angle, a cone or point joint as a rotation

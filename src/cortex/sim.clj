@@ -260,7 +260,7 @@
       :sight (when-let [eyes (:eyes opts)]
                ((:open! (sight-hooks)) creature root eyes))})))
 
-(defn solver
+(defn ^:api solver
   "How `sim` steps: {:iterations n :substeps k :projection bool}, the
   constraint solver's passes per Bullet step, Bullet steps per 1/60 s
   step, and whether joints are put back within their limits."

@@ -33,7 +33,7 @@
   [^Spatial root]
   (tree-seq #(instance? Node %) #(seq (.getChildren ^Node %)) root))
 
-(defn nodify
+(defn ^:api nodify
   "A new Node holding `children`, named `name` (\"\" when not given)."
   ([children] (nodify "" children))
   ([^String name children]

@@ -32,7 +32,7 @@
 
 (set! *warn-on-reflection* true)
 
-(defn no-op
+(defn ^:api no-op
   "Does nothing, whatever it is given: the update function of a world
   that needs none."
   [& _])
@@ -265,7 +265,7 @@
       (.setShowSettings false)
       (.setSettings settings))))
 
-(defn running?
+(defn ^:api running?
   "True from the moment `world` is started until its run has ended."
   [world]
   (let [{:keys [done] ::keys [launched]} @(run-state world)]
@@ -452,7 +452,7 @@
        (throw (ex-info (failure-text (:frames @world) e) {:frames (:frames @world)} e)))
      world)))
 
-(defn enqueue!
+(defn ^:api enqueue!
   "Call (f) on `world`'s thread, between two frames, and return its
   value (or throw what it threw): the safe way to change a running
   world from the REPL, e.g.
@@ -506,13 +506,13 @@
                              (.mult (.getDirection camera) (float 50)))
          (add-element! world ball (or node (.getRootNode world))))))))
 
-(def standard-debug-controls
+(def ^:api standard-debug-controls
   "The keys every test world has: space fires a cannon ball. The fly-by
   camera moves with W, A, S, D, Q and Z and turns with the mouse or the
   arrows; Escape quits."
   {"key-space" (fire-cannon-ball)})
 
-(defn set-gravity
+(defn ^:api set-gravity
   "Set the world's gravity. Bullet gives each rigid body its own copy
   of gravity when the body joins the space, so the bodies already there
   are changed, and woken, too. Returns the world."

@@ -61,7 +61,7 @@
                                            Vector3f/ZERO))
                 world/no-op)))
 
-(defn test-worm
+(defn ^:api test-worm
   "The worm falls onto the floor; space fires a cannon ball at it and H
   shows its joint. Simulated and wall time are shown on screen. Records
   its frames when `record?` is a folder (or true, for out/test-worm)."
