@@ -18,17 +18,42 @@
                                                    shape-points]]
             [cortex.export.urdf :as urdf]
             [cortex.export.xml :refer [xml]]
-            [cortex.vision :as vision]))
+            [cortex.plan :as plan]
+            [cortex.segment :as segment]
+            [cortex.vision :as vision])
+  (:import (com.jme3.scene Node)))
 
 (set! *warn-on-reflection* true)
 
-(def ^{:api true :arglists '([plan] [plan {:keys [root]}])} urdf
-  "The URDF document (a string) of `plan`: cortex.export.urdf/urdf."
-  urdf/urdf)
+(defn plan-of
+  "What the writers write for `x`: a plan (see cortex.plan) as it is; a
+  creature Node, the plan its body was built from, or, before it has a
+  body, its plan now. An ex-info names a segment the plan holds no body
+  for (a plan drawn up after body!, whose segments are only kept)."
+  [x]
+  (let [p (if (instance? Node x)
+            (or (:plan (segment/record x)) (plan/plan x))
+            x)]
+    (doseq [{:keys [id kept? shape]} (:segments p)
+            :when (or kept? (nil? shape))]
+      (throw (ex-info (str "segment " (pr-str id) " of " (:creature p) " has no shape or mass in"
+                           " this plan: it was planned after body! had built it; export the"
+                           " creature itself, (cortex.export/mjcf creature), or a plan drawn up"
+                           " before body!")
+                      {:creature (:creature p) :segment id})))
+    p))
 
-(def ^{:api true :arglists '([plan])} meshes
-  "The OBJ files `mjcf` and `urdf` name for `plan`: cortex.export.geometry/meshes."
-  geometry/meshes)
+(defn ^:api urdf
+  "The URDF document (a string) of `x`, a plan or a creature (see
+  `plan-of`): cortex.export.urdf/urdf."
+  ([x] (urdf/urdf (plan-of x)))
+  ([x opts] (urdf/urdf (plan-of x) opts)))
+
+(defn ^:api meshes
+  "The OBJ files `mjcf` and `urdf` name for `x`, a plan or a creature:
+  cortex.export.geometry/meshes."
+  [x]
+  (geometry/meshes (plan-of x)))
 
 (def ^{:arglists '([plan] [plan root])} tree
   "How the segments of `plan` hang together: cortex.export.model/tree."
@@ -99,12 +124,13 @@
 
 
 (defn ^:api mjcf
-  "The MJCF document (a string) of `plan` (see cortex.plan), its meshes
-  named by file (see `meshes`, written beside it). `opts`: :root, the
+  "The MJCF document (a string) of `plan` (see cortex.plan; or a creature,
+  see `plan-of`), its meshes named by file (see `meshes`, written beside it). `opts`: :root, the
   segment to hang the rest from (default the heaviest)."
   ([plan] (mjcf plan {}))
-  ([plan {:keys [root]}]
-   (let [infos (into {} (map (juxt :id segment-info)) (:segments plan))
+  ([x {:keys [root]}]
+   (let [plan (plan-of x)
+         infos (into {} (map (juxt :id segment-info)) (:segments plan))
          {:keys [roots children joint] :as t} (tree plan root)
          all-dofs (plan-dofs plan t)
          meshes (mesh-files plan)
@@ -176,8 +202,9 @@
   for neither), each with its meshes beside it. `opts` as for `mjcf`.
   Returns the files written."
   ([plan mjcf-path urdf-path] (write! plan mjcf-path urdf-path {}))
-  ([plan mjcf-path urdf-path opts]
-   (let [ms (meshes plan)]
+  ([x mjcf-path urdf-path opts]
+   (let [plan (plan-of x)
+         ms (meshes plan)]
      (vec (for [[path doc] [[mjcf-path mjcf] [urdf-path urdf]]
                 :when path
                 f (let [file (io/file path)

@@ -66,6 +66,20 @@
         (is (close? (order (:kp (mine n))) kp 1e-4))
         (is (close? (order (:kd (mine n))) kd 1e-4))))))
 
+(deftest a-built-creature-exports-as-planned
+  (let [[c p] (placed "quadruped")
+        message (fn [f] (try (f) nil (catch clojure.lang.ExceptionInfo e (ex-message e))))]
+    (is (= (ex/mjcf p) (ex/mjcf c)) "the creature, built, writes the plan body! built")
+    (is (= (ex/urdf p) (ex/urdf c)))
+    (is (= (ex/meshes p) (ex/meshes c)))
+    (let [late (plan/plan c)
+          said (message #(ex/mjcf late))]
+      (is (re-find #"segment \".+\" of .* has no shape or mass.*export the creature itself" (str said))
+          (str said))
+      (is (= said (message #(ex/urdf late)))))
+    (let [fresh (util/load-blender-model (fixtures "worm"))]
+      (is (= (ex/mjcf (plan/plan fresh)) (ex/mjcf fresh)) "before body!, its plan now"))))
+
 (deftest hulls-are-closed-and-minimal
   (let [corners (vec (for [x [-1 1] y [-1 1] z [-1 1]] [x y z]))
         on-faces [[0 0 1] [0.5 0 -1] [1 0.2 0.3] [0 0 0]]
