@@ -291,3 +291,107 @@
           (doseq [{:keys [f plan cortex]} runs]
             (check-fixture f plan cortex (result f))))))
     (skip "cortex.export-test/mujoco-and-pybullet-agree-with-cortex")))
+
+(def ^:private eye-turn
+  "How the worm with eyes is turned for the camera check: 30 degrees
+  about the vertical, after 12 about its own length (jME's X)."
+  (.mult (.fromAngleAxis (com.jme3.math.Quaternion.) (float (Math/toRadians 30))
+                         com.jme3.math.Vector3f/UNIT_Y)
+         (.fromAngleAxis (com.jme3.math.Quaternion.) (float (Math/toRadians 12))
+                         com.jme3.math.Vector3f/UNIT_X)))
+
+(def ^:private scenery
+  "What the worm with eyes looks at: each thing's place as [forward
+  right height] (forward and right along the ground from between its
+  eyes, height above the floor), half-extents (jME's axes) or radius."
+  [{:name "red-box" :type :box :at [2.0 -0.8 0.5] :size [0.4 0.5 0.4] :colour [220 40 40]}
+   {:name "blue-ball" :type :sphere :at [2.6 1.0 0.6] :size [0.6] :colour [40 70 220]}
+   {:name "yellow-box" :type :box :at [6.0 0.2 1.0] :size [1.5 1.0 0.5] :colour [235 200 30]}
+   {:name "green-ball" :type :sphere :at [2.2 0.1 1.6] :size [0.35] :colour [40 170 60]}
+   {:name "right-post" :type :box :at [2.4 1.9 1.2] :size [0.1 1.2 0.1] :colour [200 60 200]}
+   {:name "left-post" :type :box :at [3.0 -2.4 0.8] :size [0.15 0.8 0.15] :colour [245 140 30]}])
+
+(defn- eye-world
+  "The worm with eyes turned by `eye-turn`, its lowest point 0.3 above
+  y = 0, planned and built, and `scenery` placed in front of its eyes
+  in jME's world: {:creature :plan :objects [{... :position [x y z]}]}."
+  []
+  (let [c (util/load-blender-model "Models/test-creature/worm-eyes.blend")
+        _ (.setLocalRotation c ^com.jme3.math.Quaternion eye-turn)
+        [lo] (drops/extent c)
+        _ (.move c 0 (float (- 0.3 (double lo))) 0)
+        p (plan/plan c)
+        _ (body/body! c)
+        [a b] (:eyes p)
+        mid (mapv #(/ (+ (double %1) (double %2)) 2) (:position a) (:position b))
+        ;; where the eyes look (their local -Y), along the ground
+        [dx _ dz] (mv (geo/quat->matrix (:rotation a)) [0 -1 0])
+        n (Math/hypot dx dz)
+        f [(/ dx n) 0.0 (/ dz n)]
+        r [(- (f 2)) 0.0 (f 0)]]
+    {:creature c :plan p
+     :objects (for [{[ahead right height] :at :as o} scenery]
+                (assoc o :position (assoc (v+ mid (v+ (mapv #(* ahead %) f) (mapv #(* right %) r)))
+                                          1 (double height))))}))
+
+(defn- scenery-geometry
+  "A jME Geometry of thing `o`, not physical, in its colour."
+  [{:keys [name type size colour position]}]
+  (let [[r g b] (map #(/ (double %) 255) colour)
+        opts [:name name :physical? false :position (util/vec3 position)
+              :color (com.jme3.math.ColorRGBA. (float r) (float g) (float b) (float 1))]]
+    (if (= type :box)
+      (let [[x y z] size] (apply util/box x y z opts))
+      (apply util/sphere (first size) opts))))
+
+(defn eye-scene
+  "What camera_check.py needs to see the exported worm with eyes
+  beside cortex's: its MJCF written into `dir`, the floor and the
+  scenery in Z-up axes, and each eye's classes as cortex saw them
+  (a class name per pixel, \"\" for nothing)."
+  [dir]
+  (require 'cortex.sight)
+  (let [{:keys [creature plan objects]} (eye-world)
+        mj (str (io/file dir "worm-eyes.xml"))
+        _ (ex/write! plan mj nil)
+        s (sim/simulation creature {:gravity [0 0 0] :floor 0 :observe #{:eyes}
+                                    :eyes {:all {:segmentation true}}})]
+    (try
+      (doseq [o objects] (.attachChild ^com.jme3.scene.Node (:root s) (scenery-geometry o)))
+      (let [seen (:eyes (sim/step! s))]
+        {:mjcf mj :floor {:height 0.0}
+         :objects (for [{:keys [name type size colour position]} objects]
+                    {:name name :type type :pos (geo/z-up position) :colour colour
+                     :size (if (= type :box) (let [[x y z] size] [x z y]) size)})
+         :eyes (for [{:keys [name spec]} (:eyes plan)
+                     :let [{:keys [width height ^ints segmentation labels]} (seen name)]]
+                 {:name name :width width :height height :near (:near spec) :far (:far spec)
+                  :classes (map #(get labels % "") segmentation)})})
+      (finally (sim/destroy! s)))))
+
+(deftest the-exported-eyes-see-what-cortex-s-eyes-see
+  (if-let [py (python)]
+    (let [dir (str (Files/createTempDirectory "cortex-eyes" (make-array FileAttribute 0)))
+          scene (eye-scene dir)
+          in (str (io/file dir "scene.json"))
+          out (str (io/file dir "out.json"))
+          _ (spit in ((requiring-resolve 'cortex.compare/json) scene))
+          {:keys [exit err]} (shell/sh py "scripts/export/camera_check.py" in out)]
+      (is (zero? exit) err)
+      (when (zero? exit)
+        (let [{:strs [skipped eyes]} ((requiring-resolve 'cortex.blender-test/read-json) (slurp out))]
+          (if skipped
+            (println (str "SKIPPED cortex.export-test/the-exported-eyes-see-what-cortex-s-eyes-see: "
+                          skipped))
+            (doseq [{:keys [name width height]} (:eyes scene)
+                    :let [{:strs [resolution agreement controls]} (eyes name)]]
+              (testing name
+                (is (= [width height] resolution) "the camera's resolution is the eye's image size")
+                (when agreement
+                  (println (format "%s: MuJoCo's camera and cortex's eye agree on %.2f%% of %d pixels"
+                                   name (* 100 (double agreement)) (* width height)))
+                  (is (<= 0.9 agreement))
+                  (doseq [[label a] (sort controls)]
+                    (println (format "  a wrong camera, %s: %.2f%%" label (* 100 (double a))))
+                    (is (< a 0.9) (str "the check cannot tell a camera " label))))))))))
+    (skip "cortex.export-test/the-exported-eyes-see-what-cortex-s-eyes-see")))
