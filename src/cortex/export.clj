@@ -280,6 +280,7 @@
                                (pieces shape))
                   (map #(body % id) (children id))]))
         world (:world plan)
+        step (double (or (:step world) (/ 1.0 240)))
         excluded (for [{:keys [segments settings] :as c} (concat (vals joint) loops)
                        :when (:disable-collisions settings)]
                    segments)]
@@ -291,7 +292,9 @@
       (for [[{:keys [name]} why] skipped]
         (str "constraint " name " is left out: " why))
       [:compiler {:angle "radian" :inertiafromgeom "false" :autolimits "true"}]
-      [:option {:timestep (double (or (:step world) (/ 1.0 240)))
+      ;; limits as hard as MuJoCo holds steadily (see the text)
+      [:default [:joint {:solreflimit [(* 2 step) 1.0] :solimplimit [0.99 0.999 0.001]}]]
+      [:option {:timestep step
                 :gravity (z-up (or (:gravity world) [0.0 -9.81 0.0]))
                 :integrator "implicitfast" :solver "Newton" :cone "pyramidal"}
        [:flag {:filterparent "disable"}]]

@@ -304,8 +304,9 @@
                (let [lin (axis-limits c "lin")
                      ang (axis-limits c "ang")
                      slides (for [k [0 1 2]] (one (sub "lin" k) "lin" k (lin k) flipped?))
-                     turns (for [k (if flipped? [2 1 0] [0 1 2])]
-                             (one (sub "ang" k) "ang" k (ang k) flipped?))]
+                     ;; Bullet's angles are those of the inverse relative turn
+                     turns (for [k (if flipped? [0 1 2] [2 1 0])]
+                             (one (sub "ang" k) "ang" k (ang k) (not flipped?)))]
                  (if flipped? (concat turns slides) (concat slides turns)))
                (refuse "rigid body constraint" name
                        (str "is of type " (pr-str type) ", which cortex cannot export") {:type type}))))))
