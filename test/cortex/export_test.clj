@@ -362,7 +362,9 @@
                         (format "; cortex %.3f m and %.3f m" (nth heights 59) (peek heights))
                         (when-let [h (get-in urdf ["drop" "heights"])]
                           (format "; PyBullet %.3f m and %.3f m" (nth h 59) (peek h)))
-                        "; size " (format "%.2f" size)))
+                        "; size " (format "%.2f" size)
+                        (format "; limits passed in MuJoCo by at most %.3f rad"
+                                (double (apply max 0.0 (mapcat val (dissoc tab_limits "ring")))))))
           (doseq [[label i] [["after 1 s" 59] ["at the end" (dec (count heights))]]]
             (is (< (Math/abs (- (double (nth (mj-drop "heights") i)) (nth heights i))) (* 0.05 size))
                 (str label ": MuJoCo's centre of mass " (nth (mj-drop "heights") i) " m up, cortex's "

@@ -67,7 +67,8 @@
          {:keys [roots children joint] :as t} (if tab? (tab-tree plan root) (tree plan root))
          _ (when-let [[{n :name [a b] :segments}] (and tab? (seq (:loops (tab-joints plan))))]
              (throw (ex-info (str "rigid body constraint " (pr-str n) " closes a loop (" a " and " b
-                                  " are already joined): a URDF robot is a tree; export MJCF,"
+                                  " are already joined, by other constraints or through passive"
+                                  " bodies): a URDF robot is a tree; export MJCF,"
                                   " which closes it with an equality, or remove the constraint")
                              {:object n})))
          ;; a Physics-tab creature's passive bodies that nothing hangs
