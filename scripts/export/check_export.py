@@ -17,7 +17,7 @@ engine's axes), "dofs": [{"joint" (MuJoCo joint), "actuator", "range"}]}],
 "height"} or null, "tab_limits": [{"name", "type" ("GENERIC"
 or "HINGE"), "segments": [a, b], "frame" (3x3 rows, Z-up world: the
 constraint's frame, columns its X, Y, Z), "limits": [[lo, hi] or null] x 3
-(Bullet's angles)}] or absent}]}.
+(Bullet's angles)}] or absent, "track": [seconds, ...] or absent}]}.
 
 OUT.json, by fixture name:
 - "mujoco": {"error": text or null, "warnings": [text]}.
@@ -47,6 +47,9 @@ OUT.json, by fixture name:
   ({constraint: [x, y, z]}, radians, 0 within), read from the bodies as
   Bullet reads them: a 6-DOF joint's Euler angles of the inverse relative
   turn of its frames (m^-1 = Rx Ry Rz), a hinge's -(turn of b about Z).
+- "track": where each body is (its frame's origin, world) at each of
+  "track"'s times, {seconds: {body: [x, y, z]}}, simulated with gravity,
+  no floor and actuation off.
 - "render": the camera's segmentation (a body name per pixel, "" for
   none) from MuJoCo's renderer (MUJOCO_GL=egl), or {"skipped": why}.
 """
@@ -223,6 +226,21 @@ def tab_limits(path, fixture):
     return worst
 
 
+def track(path, times):
+    """Each body's position at each of `times` (see the docstring)."""
+    m, err, _ = load(path)
+    if m is None:
+        return {"error": err}
+    m.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_ACTUATION
+    d = mujoco.MjData(m)
+    out = {}
+    for t in sorted(times):
+        while d.time < t - m.opt.timestep / 2:
+            mujoco.mj_step(m, d)
+        out[str(t)] = {m.body(i).name: d.xpos[i].tolist() for i in range(1, m.nbody)}
+    return out
+
+
 def urdf(fixture):
     path = fixture["urdf"]
     out = {}
@@ -318,6 +336,8 @@ def main():
             r["drives"] = drives(m, f)
             m2, _, _ = load(f["mjcf"])
             r["drop"] = mj_drop(f["mjcf"], f["seconds"])
+            if f.get("track"):
+                r["track"] = track(f["mjcf"], f["track"])
             if f.get("tab_limits"):
                 r["tab_limits"] = tab_limits(f["mjcf"], f)
             if f.get("camera"):
