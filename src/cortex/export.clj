@@ -132,8 +132,8 @@
   segment to hang the rest from (default the heaviest). A Physics-tab
   creature's is `tab-mjcf`'s."
   ([plan] (mjcf plan {}))
-  ([x {:keys [root] :as opts}]
-   (if (model/physics-tab? (plan-of x)) (tab-mjcf (plan-of x) opts)
+  ([x {:keys [root]}]
+   (if (model/physics-tab? (plan-of x)) (tab-mjcf (plan-of x) {:root root})
    (let [plan (plan-of x)
          infos (into {} (map (juxt :id segment-info)) (:segments plan))
          {:keys [roots children joint] :as t} (tree plan root)

@@ -202,7 +202,13 @@
     (let [u (ex/urdf p)]
       (is (= 27 (count (re-seq #"type=\"revolute\"" u))))
       (is (not (str/includes? u "<link name=\"ground\"")))
-      (is (str/includes? u "left out, passive and joined to nothing (the world's, where the loader puts it): ground")))))
+      (is (str/includes? u "left out, passive and joined to nothing (the world's, where the loader puts it): ground")))
+    (is (= ["head/free"] (map second (re-seq #"<freejoint name=\"([^\"]*)\"" (ex/mjcf p {:root "head"}))))))
+  (let [c (physics-tab/load-creature (tab-fixtures "ragdoll"))
+        p (plan/plan c)]
+    (physics-tab/physics-body! c)
+    (is (= (ex/mjcf p) (ex/mjcf c)))
+    (is (= (ex/urdf p) (ex/urdf c)))))
 
 (defn- made-up
   "A constraint of `type` between a and b, its frame the world's, with
