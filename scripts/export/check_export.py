@@ -14,7 +14,10 @@ MANIFEST.json: {"fixtures": [{"name", "mjcf" (path), "urdf" (path or null),
 engine's axes), "dofs": [{"joint" (MuJoCo joint), "actuator", "range"}]}],
 "pairs": [[a, b], ...] (joined segments), "base": {"link", "pos", "quat"
 [x y z w]} (where the URDF's root link is), "camera": {"name", "width",
-"height"} or null}]}.
+"height"} or null, "tab_limits": [{"name", "type" ("GENERIC"
+or "HINGE"), "segments": [a, b], "frame" (3x3 rows, Z-up world: the
+constraint's frame, columns its X, Y, Z), "limits": [[lo, hi] or null] x 3
+(Bullet's angles)}] or absent, "track": [seconds, ...] or absent}]}.
 
 OUT.json, by fixture name:
 - "mujoco": {"error": text or null, "warnings": [text]}.
@@ -39,6 +42,14 @@ OUT.json, by fixture name:
 - "urdf": check_urdf's exit code and output; PyBullet's link masses; and the
   same drop in PyBullet (1/60 s step in four substeps, floor friction 1:
   Bullet multiplies).
+- "tab_limits" (a Physics-tab creature's): the drop again, and over its
+  last "seconds" - 1 s how far each angle Bullet limits went past its limit
+  ({constraint: [x, y, z]}, radians, 0 within), read from the bodies as
+  Bullet reads them: a 6-DOF joint's Euler angles of the inverse relative
+  turn of its frames (m^-1 = Rx Ry Rz), a hinge's -(turn of b about Z).
+- "track": where each body is (its frame's origin, world) at each of
+  "track"'s times, {seconds: {body: [x, y, z]}}, simulated with gravity,
+  no floor and actuation off.
 - "render": the camera's segmentation (a body name per pixel, "" for
   none) from MuJoCo's renderer (MUJOCO_GL=egl), or {"skipped": why}.
 """
@@ -178,6 +189,58 @@ def mj_drop(path, seconds):
             "frame": frame}
 
 
+def tab_limits(path, fixture):
+    """How far a Physics-tab creature's limited angles pass their limits
+    in MuJoCo, dropped onto the floor (see the docstring)."""
+    floored = add_floor(path, 0)
+    m, err, _ = load(floored)
+    os.remove(floored)
+    if m is None:
+        return {"error": err}
+    d = mujoco.MjData(m)
+    mujoco.mj_forward(m, d)
+    x0 = d.xmat.copy()
+    cons = fixture["tab_limits"]
+    worst = {c["name"]: [0.0, 0.0, 0.0] for c in cons}
+    steps = int(round(fixture["seconds"] / m.opt.timestep))
+    settle = int(round(1.0 / m.opt.timestep))
+    for i in range(steps):
+        mujoco.mj_step(m, d)
+        if i < settle:
+            continue
+        for c in cons:
+            f = np.asarray(c["frame"], float)
+            a, b = c["segments"]
+            ia, ib = m.body(a).id, m.body(b).id
+            fa = d.xmat[ia].reshape(3, 3) @ x0[ia].reshape(3, 3).T @ f
+            fb = d.xmat[ib].reshape(3, 3) @ x0[ib].reshape(3, 3).T @ f
+            r = fa.T @ fb
+            if c["type"] == "HINGE":
+                angles = [0.0, 0.0, -hinge_angle(r, np.array([0.0, 0.0, 1.0]))]
+            else:
+                angles = euler_inverse(r)
+            for k, lim in enumerate(c["limits"]):
+                if lim is not None:
+                    past = max(lim[0] - angles[k], angles[k] - lim[1], 0.0)
+                    worst[c["name"]][k] = max(worst[c["name"]][k], past)
+    return worst
+
+
+def track(path, times):
+    """Each body's position at each of `times` (see the docstring)."""
+    m, err, _ = load(path)
+    if m is None:
+        return {"error": err}
+    m.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_ACTUATION
+    d = mujoco.MjData(m)
+    out = {}
+    for t in sorted(times):
+        while d.time < t - m.opt.timestep / 2:
+            mujoco.mj_step(m, d)
+        out[str(t)] = {m.body(i).name: d.xpos[i].tolist() for i in range(1, m.nbody)}
+    return out
+
+
 def urdf(fixture):
     path = fixture["urdf"]
     out = {}
@@ -273,6 +336,10 @@ def main():
             r["drives"] = drives(m, f)
             m2, _, _ = load(f["mjcf"])
             r["drop"] = mj_drop(f["mjcf"], f["seconds"])
+            if f.get("track"):
+                r["track"] = track(f["mjcf"], f["track"])
+            if f.get("tab_limits"):
+                r["tab_limits"] = tab_limits(f["mjcf"], f)
             if f.get("camera"):
                 r["render"] = render(m2, f["camera"])
         if f.get("urdf"):

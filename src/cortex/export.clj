@@ -11,6 +11,7 @@
   geometry (`hull-faces`, `z-up`, `quat->matrix`) is
   cortex.export.geometry's."
   (:require [clojure.java.io :as io]
+            [clojure.string :as str]
             [cortex.export.geometry :as geometry
              :refer [C axis-turn identity3 matrix->quat mesh-files mm mv pieces quat->matrix
                      transpose v* v+ v- z-up z-up-rotation]]
@@ -41,7 +42,7 @@
                            " creature itself, (cortex.export/mjcf creature), or a plan drawn up"
                            " before body!")
                       {:creature (:creature p) :segment id})))
-    p))
+    (cond-> p (model/physics-tab? p) model/check-tab!)))
 
 (defn ^:api urdf
   "The URDF document (a string) of `x`, a plan or a creature (see
@@ -116,19 +117,23 @@
   joint `j`."
   [info j dofs]
   (let [pin (local-point info (z-up (:pivot j)))]
-    (for [{:keys [name axis range ball]} dofs]
+    (for [{:keys [name axis range ball slide? stiffness damping]} dofs]
       (if ball
         [:joint {:name name :type "ball" :pos pin}]
-        [:joint {:name name :type "hinge" :pos pin :axis (local-vector info axis)
-                 :range range}]))))
+        [:joint {:name name :type (if slide? "slide" "hinge") :pos pin :axis (local-vector info axis)
+                 :range range :stiffness stiffness :damping damping}]))))
 
+
+(declare tab-mjcf)
 
 (defn ^:api mjcf
   "The MJCF document (a string) of `plan` (see cortex.plan; or a creature,
   see `plan-of`), its meshes named by file (see `meshes`, written beside it). `opts`: :root, the
-  segment to hang the rest from (default the heaviest)."
+  segment to hang the rest from (default the heaviest). A Physics-tab
+  creature's is `tab-mjcf`'s."
   ([plan] (mjcf plan {}))
   ([x {:keys [root]}]
+   (if (model/physics-tab? (plan-of x)) (tab-mjcf (plan-of x) {:root root})
    (let [plan (plan-of x)
          infos (into {} (map (juxt :id segment-info)) (:segments plan))
          {:keys [roots children joint] :as t} (tree plan root)
@@ -195,7 +200,7 @@
             (list [:jointpos {:name (str "angle/" dof) :joint dof}]
                   [:jointvel {:name (str "speed/" dof) :joint dof}])))
         (for [{:keys [id]} (:segments plan)]
-          [:touch {:name (str "touch/" id) :site (str id "/touch")}])]]))))
+          [:touch {:name (str "touch/" id) :site (str id "/touch")}])]])))))
 
 (defn ^:api write!
   "Write `plan` as MJCF to `mjcf-path` and/or URDF to `urdf-path` (nil
@@ -216,3 +221,88 @@
                                          (spit mf t)
                                          (str mf)))))]
             f)))))
+
+(defn- loop-equality
+  "The MJCF equality constraints that close the loop of Physics-tab
+  constraint `c` between its two bodies (`infos` by id), with a comment
+  saying what is lost; an ex-info naming a constraint that cannot."
+  [infos {:keys [name type pivot rotation segments] :as c}]
+  (let [[a b] segments
+        lin (model/axis-limits c "lin")
+        ang (model/axis-limits c "ang")
+        six? (#{"GENERIC" "GENERIC_SPRING"} type)
+        pin (z-up pivot)
+        connect (fn [n p] [:connect {:name n :body1 a :body2 b :anchor (local-point (infos a) p)}])]
+    (cond
+      (or (= "FIXED" type) (and six? (every? #{:locked} (concat lin ang))))
+      (list (str "constraint " name " closes a loop: a weld") [:weld {:name name :body1 a :body2 b}])
+      (or (= "POINT" type) (and six? (every? #{:locked} lin)))
+      (list (str "constraint " name " closes a loop: a connect at its pivot"
+                 (when six? ", its angular limits lost"))
+            (connect name pin))
+      (= "HINGE" type)
+      (let [z (mapv #(nth % 2) (z-up-rotation (quat->matrix rotation)))]
+        (list (str "constraint " name " closes a loop: two connects on its axis, its limits lost")
+              (connect name pin) (connect (str name "/axis") (v+ pin (v* 0.1 z)))))
+      :else
+      (throw (ex-info (str "rigid body constraint " (pr-str name) " (" type ") closes a loop: "
+                           (str/join ", " segments) " are already joined, and MJCF can close a"
+                           " loop only with a weld (FIXED), a connect (POINT, or GENERIC with"
+                           " its linear axes locked) or two (HINGE); lock its linear axes, or"
+                           " join the bodies as a tree")
+                      {:object name :type type})))))
+
+(defn- tab-mjcf
+  "The MJCF document of Physics-tab `plan` (see `mjcf`)."
+  [plan {:keys [root]}]
+  (let [infos (into {} (map (juxt :id model/tab-segment-info)) (:segments plan))
+        {:keys [loops skipped]} (model/tab-joints plan)
+        {:keys [roots children joint] :as t} (model/tab-tree plan root)
+        all-dofs (model/tab-plan-dofs plan t)
+        meshes (mesh-files plan)
+        body (fn body [id parent]
+               (let [{:keys [R pos com principal moments mass static? shape collision-groups]
+                      :as info} (infos id)
+                     j (joint id)
+                     P (if parent (:R (infos parent)) identity3)]
+                 [:body {:name id
+                         :pos (if parent (mv (transpose P) (v- pos (:pos (infos parent)))) pos)
+                         :quat (wxyz (mm (transpose P) R))}
+                  (cond j (mjcf-joints info j (all-dofs (:name j)))
+                        (not static?) [:freejoint {:name (str id "/free")}])
+                  (when-not static?
+                    [:inertial {:pos com :quat (wxyz principal) :mass (double mass)
+                                :diaginertia moments}])
+                  (map-indexed (fn [k piece]
+                                 (cond-> (piece-geom info meshes k piece)
+                                   collision-groups (update 1 assoc :contype collision-groups
+                                                            :conaffinity collision-groups)))
+                               (pieces shape))
+                  (map #(body % id) (children id))]))
+        world (:world plan)
+        step (double (or (:step world) (/ 1.0 240)))
+        excluded (for [{:keys [segments settings] :as c} (concat (vals joint) loops)
+                       :when (:disable-collisions settings)]
+                   segments)]
+    (xml
+     [:mujoco {:model (:creature plan)}
+      (str "written by cortex.export from the plan of Physics-tab creature " (:creature plan)
+           ": metres, kilograms, seconds, radians; Z up (cortex's jME Y is Z here,"
+           " its Z is -Y); see org/export.org for every mapping and what is lost")
+      (for [[{:keys [name]} why] skipped]
+        (str "constraint " name " is left out: " why))
+      [:compiler {:angle "radian" :inertiafromgeom "false" :autolimits "true"}]
+      ;; limits as hard as MuJoCo holds steadily (see the text)
+      [:default [:joint {:solreflimit [(* 2 step) 1.0] :solimplimit [0.99 0.999 0.001]}]]
+      [:option {:timestep step
+                :gravity (z-up (or (:gravity world) [0.0 -9.81 0.0]))
+                :integrator "implicitfast" :solver "Newton" :cone "pyramidal"}
+       [:flag {:filterparent "disable"}]]
+      (when (seq meshes)
+        [:asset (for [[_ {:keys [file]}] (sort-by key meshes)]
+                  [:mesh {:name file :file file}])])
+      [:worldbody (map #(body % nil) roots)]
+      (when (seq excluded)
+        [:contact (for [[a b] excluded] [:exclude {:body1 a :body2 b}])])
+      (when (seq loops)
+        [:equality (map #(loop-equality infos %) loops)])])))

@@ -6,10 +6,15 @@
   `cone-frame`), and each joint's muscle from the plan (`muscles`)."
   (:require [clojure.string :as str]
             [cortex.body :as body]
+            [cortex.constraint :as constraint]
+            [cortex.engine :as engine]
             [cortex.export.geometry :refer [C dot identity3 mm mv norm quat->matrix
                                             v+ v- v* z-up z-up-rotation]]
+            [cortex.rigid-body :as rigid-body]
             [cortex.strength :as strength :refer [axis-of box-moments]])
-  (:import (com.jme3.math Quaternion Vector3f)))
+  (:import (com.jme3.bullet.collision.shapes CollisionShape)
+           (com.jme3.bullet.control RigidBodyControl)
+           (com.jme3.math Quaternion Vector3f)))
 
 (set! *warn-on-reflection* true)
 
@@ -152,3 +157,162 @@
      (into {} (for [[n ds] (plan-dofs plan t)]
                 [n {:flipped? (contains? flipped n) :dofs ds}])))))
 
+
+(defn physics-tab?
+  "Whether `plan` is a creature of Blender's Physics tab: its segments
+  are rigid bodies (see cortex.physics-tab)."
+  [plan]
+  (boolean (some #(= :rigid-body (:kind %)) (:segments plan))))
+
+(defn- refuse
+  [what name msg data]
+  (throw (ex-info (str what " " (pr-str name) ": " msg) (assoc data :object name))))
+
+(defn check-tab!
+  "`plan`, a Physics-tab plan, when MJCF and URDF can say it; else an
+  ex-info naming the body or constraint and what to change."
+  [plan]
+  (when (seq (:joints plan))
+    (throw (ex-info (str "creature " (:creature plan) " has both cortex's joints ("
+                         (str/join ", " (map :name (:joints plan))) ") and the Physics tab's"
+                         " rigid bodies: export it planned as one or the other"
+                         " (cortex.plan/plan's :physics-tab?)")
+                    {:creature (:creature plan)})))
+  (doseq [{:keys [id kind mass shape empty?]} (:segments plan)]
+    (when (not= :rigid-body kind)
+      (refuse "segment" id (str "is cortex's own segment in a Physics-tab creature: export it"
+                                " planned as one or the other (cortex.plan/plan's :physics-tab?)")
+              {}))
+    (when (= :mesh (:type shape))
+      (refuse "rigid body" id (str "has a MESH collision shape, whose triangles the plan does not"
+                                   " hold and which MuJoCo would collide as its convex hull: set its"
+                                   " Shape to Convex Hull (or Box) in the Physics tab")
+              {:shape :mesh}))
+    (when (and empty? (pos? (double mass)))
+      (refuse "rigid body" id (str "is a mesh without vertices: Bullet gives it no moment of"
+                                   " inertia (it never turns), which MJCF and URDF cannot say;"
+                                   " give it a mesh, or make it Passive")
+              {})))
+  plan)
+
+(defn rigid-body-moments
+  "The principal moments (the body's own axes, jME's, about its origin)
+  that Bullet gives the rigid body of plan segment `s`: its shape's
+  inertia for its mass, asked of cortex's engine."
+  [{:keys [mass shape]}]
+  (let [c (RigidBodyControl. ^CollisionShape (rigid-body/shape-of shape nil) (float mass))]
+    (mapv #(/ 1.0 (double %)) (engine/inverse-inertia (engine/rigid-body c)))))
+
+(defn tab-segment-info
+  "What the writers need of Physics-tab plan segment `s` (see
+  `segment-info`): its centre of mass at its origin, its principal axes
+  its own, its moments Bullet's (`rigid-body-moments`)."
+  [s]
+  (let [info (segment-info (assoc s :inertia {:source :box}))]
+    (cond-> info
+      (not (:static? info)) (assoc :moments (rigid-body-moments s)))))
+
+(defn tab-joints
+  "How the constraints of Physics-tab `plan` join its bodies, in the
+  plan's order: {:joints [constraint ...] (a tree), :loops [constraint
+  ...] (each joins two bodies already joined, passive bodies being one
+  with the world), :skipped [[constraint why] ...]}. An ex-info names a
+  MOTOR whose motor is on."
+  [plan]
+  (let [static (set (keep #(when (zero? (double (:mass %))) (:id %)) (:segments plan)))
+        root-of (fn [m x] (let [p (get m x x)] (if (= p x) x (recur m p))))]
+    (loop [cs (:constraints plan)
+           m (zipmap static (repeat ::world))
+           out {:joints [] :loops [] :skipped []}]
+      (if-let [{:keys [name type enabled? segments settings] :as c} (first cs)]
+        (let [[a b] segments
+              why (cond (not enabled?) "it is disabled in Blender"
+                        (every? static segments) "both its bodies are passive"
+                        (= "MOTOR" type)
+                        (if (or (:use-motor-ang settings) (:use-motor-lin settings))
+                          (refuse "rigid body constraint" name
+                                  (str "is a MOTOR, which neither MJCF nor URDF can say (a motor"
+                                       " that drives two bodies towards a relative speed); join its"
+                                       " bodies with another constraint and drive them some other"
+                                       " way, or turn its motor off")
+                                  {:type type})
+                          "a MOTOR with its motors off frees every axis"))
+              ra (root-of m a)
+              rb (root-of m b)]
+          (cond why (recur (rest cs) m (update out :skipped conj [c why]))
+                (= ra rb) (recur (rest cs) m (update out :loops conj c))
+                :else (recur (rest cs) (if (= rb ::world) (assoc m ra rb) (assoc m rb ra))
+                             (update out :joints conj c))))
+        out))))
+
+(defn tab-tree
+  "The tree (see `tree`) of Physics-tab `plan`'s bodies, joined by the
+  constraints `tab-joints` puts in it; `root` as for `tree`."
+  [plan & [root]]
+  (tree (assoc plan :joints (:joints (tab-joints plan))) root))
+
+(defn axis-limits
+  "Constraint `c`'s limits of `kind` (\"lin\" or \"ang\") on its X, Y
+  and Z: :locked, [lo hi], or nil (free: no limit, or the lower above
+  the upper, which Bullet frees). An ex-info for an axis locked away
+  from zero."
+  [{:keys [name settings]} kind]
+  (mapv (fn [k l]
+          (when l
+            (let [[lo hi] (mapv double l)]
+              (cond (> lo hi) nil
+                    (< lo hi) [lo hi]
+                    (zero? lo) :locked
+                    :else (refuse "rigid body constraint" name
+                                  (str "locks its " (if (= kind "lin") "linear" "angular") " "
+                                       (["X" "Y" "Z"] k) " at " lo
+                                       ", which a joint cannot say without moving a body from"
+                                       " where the file placed it: lock it at 0, or give it a range")
+                                  {:axis k :kind kind})))))
+        (range 3) (constraint/limits name settings kind)))
+
+(defn tab-dofs
+  "The one-axis degrees of freedom (see `dofs`) of Physics-tab
+  constraint `c`, the child's side first when `flipped?` (its first
+  body is the child): [{:name :axis (Z-up world) :range [lo hi] or nil
+  :slide? :stiffness :damping}], or [{:name :ball true}]; [] welds."
+  [{:keys [name type settings rotation] :as c} flipped?]
+  (let [F (z-up-rotation (quat->matrix rotation))
+        spring (fn [kind k]
+                 (let [suffix (str (when (= kind "ang") "ang-") (["x" "y" "z"] k))]
+                   (when (and (= "GENERIC_SPRING" type)
+                              (get settings (keyword (str "use-spring-" suffix))))
+                     {:stiffness (double (get settings (keyword (str "spring-stiffness-" suffix))))
+                      :damping (double (get settings (keyword (str "spring-damping-" suffix))))})))
+        one (fn [n kind k lim negate?]
+              (when-not (= :locked lim)
+                (merge {:name n :axis (mapv #(nth % k) F) :slide? (= kind "lin")
+                        :range (when-let [[lo hi] lim] (if negate? [(- hi) (- lo)] [lo hi]))}
+                       (spring kind k))))
+        sub (fn [kind k] (str name "/" (when (= kind "lin") "slide-") (["x" "y" "z"] k)))]
+    (vec
+     (remove nil?
+             (case type
+               "FIXED" []
+               "POINT" [{:name name :ball true}]
+               ;; Bullet's hinge angle is the first body's turn about Z
+               "HINGE" [(one name "ang" 2 (nth (axis-limits c "ang") 2) (not flipped?))]
+               "SLIDER" [(one name "lin" 0 (first (axis-limits c "lin")) flipped?)]
+               "PISTON" [(one (sub "lin" 0) "lin" 0 (first (axis-limits c "lin")) flipped?)
+                         (one (sub "ang" 0) "ang" 0 (first (axis-limits c "ang")) flipped?)]
+               ("GENERIC" "GENERIC_SPRING")
+               (let [lin (axis-limits c "lin")
+                     ang (axis-limits c "ang")
+                     slides (for [k [0 1 2]] (one (sub "lin" k) "lin" k (lin k) flipped?))
+                     ;; Bullet's angles are those of the inverse relative turn
+                     turns (for [k (if flipped? [0 1 2] [2 1 0])]
+                             (one (sub "ang" k) "ang" k (ang k) (not flipped?)))]
+                 (if flipped? (concat turns slides) (concat slides turns)))
+               (refuse "rigid body constraint" name
+                       (str "is of type " (pr-str type) ", which cortex cannot export") {:type type}))))))
+
+(defn tab-plan-dofs
+  "Each tree constraint's dofs (see `tab-dofs`) in the tree `t` of
+  Physics-tab `plan`, by constraint name."
+  [plan {:keys [flipped joint]}]
+  (into {} (for [c (vals joint)] [(:name c) (tab-dofs c (contains? flipped (:name c)))])))

@@ -4,7 +4,8 @@
   (:require [clojure.string :as str]
             [cortex.export.geometry :refer [C axis-turn identity3 matrix->quat mesh-files mm mv
                                             pieces quat->matrix transpose v* v+ v- z-up]]
-            [cortex.export.model :refer [blender->jme muscles plan-dofs segment-info tree]]
+            [cortex.export.model :refer [blender->jme muscles physics-tab? plan-dofs segment-info
+                                         tab-joints tab-plan-dofs tab-segment-info tab-tree tree]]
             [cortex.export.xml :refer [text xml]]))
 
 (set! *warn-on-reflection* true)
@@ -61,16 +62,27 @@
   pieces (URDF is one tree)."
   ([plan] (urdf plan {}))
   ([plan {:keys [root]}]
-   (let [infos (into {} (map (juxt :id segment-info)) (:segments plan))
-         {:keys [roots children joint] :as t} (tree plan root)
+   (let [tab? (physics-tab? plan)
+         infos (into {} (map (juxt :id (if tab? tab-segment-info segment-info))) (:segments plan))
+         {:keys [roots children joint] :as t} (if tab? (tab-tree plan root) (tree plan root))
+         _ (when-let [[{n :name [a b] :segments}] (and tab? (seq (:loops (tab-joints plan))))]
+             (throw (ex-info (str "rigid body constraint " (pr-str n) " closes a loop (" a " and " b
+                                  " are already joined, by other constraints or through passive"
+                                  " bodies): a URDF robot is a tree; export MJCF,"
+                                  " which closes it with an equality, or remove the constraint")
+                             {:object n})))
+         ;; a Physics-tab creature's passive bodies that nothing hangs
+         ;; from (its ground) are the world's, not the robot's
+         scenery (when tab? (filter #(and (:static? (infos %)) (empty? (children %))) roots))
+         roots (remove (set scenery) roots)
          _ (when (next roots)
              (throw (ex-info (str "creature " (:creature plan) " is in " (count roots)
                                   " pieces (roots " (str/join ", " roots)
                                   "); a URDF robot is one tree")
                              {:roots roots})))
-         all-dofs (plan-dofs plan t)
+         all-dofs (if tab? (tab-plan-dofs plan t) (plan-dofs plan t))
          meshes (mesh-files plan)
-         ms (muscles plan)
+         ms (if tab? {} (muscles plan))
          frame-of (fn [id] (if-let [j (joint id)]
                              [(z-up (:pivot j)) (:R (infos id))]
                              [(:pos (infos id)) (:R (infos id))]))
@@ -86,12 +98,20 @@
                      (let [{jn :name :keys [type rotation] :as j} (joint id)
                            [o F :as frame] (frame-of id)
                            ds (all-dofs jn)
-                           strength (:strength (ms jn))
-                           ds (if (some :ball ds)
+                           ;; a Physics-tab joint has no muscle: effort 0
+                           strength (or (:strength (ms jn)) 0.0)
+                           ds (cond
+                                (some :ball ds)
                                 (for [[k b] (map-indexed vector [[1 0 0] [0 1 0] [0 0 1]])]
                                   {:name (str jn "/" (["x" "y" "z"] k)) :continuous true
                                    :axis (z-up (mv (quat->matrix rotation) (blender->jme b)))})
-                                ds)
+                                (empty? ds) [{:name jn :fixed true}]
+                                (some #(and (:slide? %) (nil? (:range %))) ds)
+                                (throw (ex-info (str "rigid body constraint " (pr-str jn) " leaves a"
+                                                     " body free to slide without end, which a URDF"
+                                                     " prismatic joint cannot say: give it limits")
+                                                {:object jn}))
+                                :else ds)
                            chain (concat [parent] (for [k (range 1 (count ds))] (str "_" jn "/" k)) [id])]
                        (concat
                         (when (next ds)
@@ -99,18 +119,21 @@
                                 " one-axis joints through links of negligible mass (_" jn "/1, ...)"
                                 (when (= type :cone) ", in the order cortex's engine limits it"))])
                         (map tiny (butlast (rest chain)))
-                        (for [[{:keys [name axis range continuous]} [p c]]
-                              (map vector ds (partition 2 1 chain))]
-                          [:joint {:name name :type (if continuous "continuous" "revolute")}
+                        (for [[{:keys [name axis range continuous fixed slide?]} [p c]]
+                              (map vector ds (partition 2 1 chain))
+                              :let [continuous (or continuous (and (not slide?) (nil? range)))]]
+                          [:joint {:name name :type (cond fixed "fixed" slide? "prismatic"
+                                                          continuous "continuous" :else "revolute")}
                            [:parent {:link p}] [:child {:link c}]
                            (if (= p parent)
                              (origin (frame-of parent) o F)
                              [:origin {:xyz [0.0 0.0 0.0] :rpy [0.0 0.0 0.0]}])
-                           [:axis {:xyz (mv (transpose F) axis)}]
-                           (if continuous
-                             [:limit {:effort strength :velocity 100.0}]
-                             [:limit {:lower (first range) :upper (second range)
-                                      :effort strength :velocity 100.0}])])
+                           (when-not fixed [:axis {:xyz (mv (transpose F) axis)}])
+                           (cond
+                             fixed nil
+                             continuous [:limit {:effort strength :velocity 100.0}]
+                             :else [:limit {:lower (first range) :upper (second range)
+                                            :effort strength :velocity 100.0}])])
                         (joints id))))
                    (children parent)))
          r (first roots)
@@ -121,6 +144,9 @@
             ": metres, kilograms, seconds, radians; Z up; see org/export.org")
        (str "the root link " r " is placed in the world at xyz " (text o) ", quaternion [x y z w] "
             (text (matrix->quat F)))
+       (when (seq scenery)
+         (str "left out, passive and joined to nothing (the world's, where the loader puts it): "
+              (str/join ", " scenery)))
        (links r)
        (joints r)]))))
 
