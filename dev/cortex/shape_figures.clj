@@ -3,8 +3,8 @@
   "The figures behind cortex.shapes' tolerances: lein run -m
   cortex.shape-figures prints them as the shapes chapter's table."
   (:require [cortex.blender :as blender]
-            [cortex.segment :as segment]
-            [cortex.shapes :as shapes])
+            [cortex.shapes :as shapes]
+            [cortex.util :as util])
   (:import (com.jme3.scene Geometry)))
 
 (set! *warn-on-reflection* true)
@@ -25,9 +25,10 @@
 (defn rows
   "[name face-depth volume-difference verdict] for each of `pieces`."
   []
-  (let [gs (into {} (for [^Geometry g (segment/segments
-                                       (blender/load-blender-model "test/fixtures/shapes/shapes.blend"))]
-                      [(segment/segment-name g) g]))
+  (let [gs (into {} (for [g (util/node-seq (blender/load-blender-model "test/fixtures/shapes/shapes.blend"))
+                          :when (instance? Geometry g)]
+                      ;; a mesh object's Geometry hangs from a Node named as the object
+                      [(.getName (.getParent ^Geometry g)) g]))
         open {:tolerance 1.0 :volume-tolerance 1.0 :face-tolerance 1.0}]
     (for [[id drawn label] pieces
           :let [piece (first (shapes/pieces (shapes/triangles (gs id))))

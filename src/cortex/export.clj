@@ -126,81 +126,88 @@
 
 (declare tab-mjcf)
 
+(defn- marker-mjcf
+  "The MJCF document of `plan`, a creature of cortex's own segments and
+  joints, hung from `root` (nil: the heaviest segment)."
+  [plan root]
+  (let [infos (into {} (map (juxt :id segment-info)) (:segments plan))
+        {:keys [roots children joint] :as t} (tree plan root)
+        all-dofs (plan-dofs plan t)
+        meshes (mesh-files plan)
+        ms (muscles plan)
+        eyes (group-by :segment (:eyes plan))
+        child-of (into {} (for [[child j] joint] [(:name j) child]))
+        body (fn body [id parent]
+               (let [{:keys [R pos com principal moments mass static? shape] :as info} (infos id)
+                     j (joint id)
+                     P (if parent (:R (infos parent)) identity3)]
+                 [:body {:name id
+                         :pos (if parent (mv (transpose P) (v- pos (:pos (infos parent)))) pos)
+                         :quat (wxyz (mm (transpose P) R))}
+                  (cond j (mjcf-joints info j (all-dofs (:name j)))
+                        (not static?) [:freejoint {:name (str id "/free")}])
+                  (when-not static?
+                    [:inertial {:pos com :quat (wxyz principal) :mass (double mass)
+                                :diaginertia moments}])
+                  (map-indexed #(piece-geom info meshes %1 %2) (pieces shape))
+                  (let [[c half] (bounds (map z-up (shape-points shape)))]
+                    [:site {:name (str id "/touch") :type "box" :pos c
+                            :size (mapv #(+ 0.01 (double %)) half) :rgba [0 0 0 0]}])
+                  (map #(eye-camera info %) (eyes id))
+                  (map #(body % id) (children id))]))]
+    (xml
+     [:mujoco {:model (:creature plan)}
+      (str "written by cortex.export from the plan of creature " (:creature plan)
+           ": metres, kilograms, seconds, radians; Z up (cortex's jME Y is Z here,"
+           " its Z is -Y); see org/export.org for every mapping and what is lost")
+      [:compiler {:angle "radian" :inertiafromgeom "false" :autolimits "true"}]
+      [:option {:timestep (/ 1.0 240) :gravity [0.0 0.0 -9.81] :integrator "implicitfast"
+                :solver "Newton" :cone "pyramidal"}]
+      (when (seq meshes)
+        [:asset (for [[_ {:keys [file]}] (sort-by key meshes)]
+                  [:mesh {:name file :file file}])])
+      [:worldbody (map #(body % nil) roots)]
+      (when (seq (:joints plan))
+        [:contact (for [{[a b] :segments} (:joints plan)] [:exclude {:body1 a :body2 b}])])
+      [:actuator
+       (for [{:keys [name rotation]} (:joints plan)
+             :let [{:keys [strength kp kd]} (ms name)]
+             {dof :name :keys [ball frame-axis]} (all-dofs name)]
+         (if ball
+           ;; a ball joint's torque is in its body's frame: the joint
+           ;; frame's axes (Blender's X, Y, Z) there
+           (for [[axis b] [["x" [1 0 0]] ["y" [0 1 0]] ["z" [0 0 1]]]]
+             [:motor {:name (str "muscle/" dof "/" axis) :joint dof
+                      :gear (concat (local-vector (infos (child-of name))
+                                                  (z-up (mv (quat->matrix rotation) (blender->jme b))))
+                                    [0 0 0])
+                      :ctrlrange [(- strength) strength]}])
+           [:position {:name (str "muscle/" dof) :joint dof
+                       :kp (if frame-axis (nth kp frame-axis) kp)
+                       :kv (if frame-axis (nth kd frame-axis) kd)
+                       :forcerange [(- strength) strength]}]))]
+      [:sensor
+       (for [{:keys [name]} (:joints plan)
+             {dof :name :keys [ball]} (all-dofs name)]
+         (if ball
+           (list [:ballquat {:name (str "angle/" dof) :joint dof}]
+                 [:ballangvel {:name (str "speed/" dof) :joint dof}])
+           (list [:jointpos {:name (str "angle/" dof) :joint dof}]
+                 [:jointvel {:name (str "speed/" dof) :joint dof}])))
+       (for [{:keys [id]} (:segments plan)]
+         [:touch {:name (str "touch/" id) :site (str id "/touch")}])]])))
+
 (defn ^:api mjcf
   "The MJCF document (a string) of `plan` (see cortex.plan; or a creature,
-  see `plan-of`), its meshes named by file (see `meshes`, written beside it). `opts`: :root, the
-  segment to hang the rest from (default the heaviest). A Physics-tab
-  creature's is `tab-mjcf`'s."
+  see `plan-of`), its meshes named by file (see `meshes`, written beside
+  it). `opts`: :root, the segment to hang the rest from (default the
+  heaviest). A Physics-tab creature's is `tab-mjcf`'s."
   ([plan] (mjcf plan {}))
   ([x {:keys [root]}]
-   (if (model/physics-tab? (plan-of x)) (tab-mjcf (plan-of x) {:root root})
-   (let [plan (plan-of x)
-         infos (into {} (map (juxt :id segment-info)) (:segments plan))
-         {:keys [roots children joint] :as t} (tree plan root)
-         all-dofs (plan-dofs plan t)
-         meshes (mesh-files plan)
-         ms (muscles plan)
-         eyes (group-by :segment (:eyes plan))
-         child-of (into {} (for [[child j] joint] [(:name j) child]))
-         body (fn body [id parent]
-                (let [{:keys [R pos com principal moments mass static? shape] :as info} (infos id)
-                      j (joint id)
-                      P (if parent (:R (infos parent)) identity3)]
-                  [:body {:name id
-                          :pos (if parent (mv (transpose P) (v- pos (:pos (infos parent)))) pos)
-                          :quat (wxyz (mm (transpose P) R))}
-                   (cond j (mjcf-joints info j (all-dofs (:name j)))
-                         (not static?) [:freejoint {:name (str id "/free")}])
-                   (when-not static?
-                     [:inertial {:pos com :quat (wxyz principal) :mass (double mass)
-                                 :diaginertia moments}])
-                   (map-indexed #(piece-geom info meshes %1 %2) (pieces shape))
-                   (let [[c half] (bounds (map z-up (shape-points shape)))]
-                     [:site {:name (str id "/touch") :type "box" :pos c
-                             :size (mapv #(+ 0.01 (double %)) half) :rgba [0 0 0 0]}])
-                   (map #(eye-camera info %) (eyes id))
-                   (map #(body % id) (children id))]))]
-     (xml
-      [:mujoco {:model (:creature plan)}
-       (str "written by cortex.export from the plan of creature " (:creature plan)
-            ": metres, kilograms, seconds, radians; Z up (cortex's jME Y is Z here,"
-            " its Z is -Y); see org/export.org for every mapping and what is lost")
-       [:compiler {:angle "radian" :inertiafromgeom "false" :autolimits "true"}]
-       [:option {:timestep (/ 1.0 240) :gravity [0.0 0.0 -9.81] :integrator "implicitfast"
-                 :solver "Newton" :cone "pyramidal"}]
-       (when (seq meshes)
-         [:asset (for [[_ {:keys [file]}] (sort-by key meshes)]
-                   [:mesh {:name file :file file}])])
-       [:worldbody (map #(body % nil) roots)]
-       (when (seq (:joints plan))
-         [:contact (for [{[a b] :segments} (:joints plan)] [:exclude {:body1 a :body2 b}])])
-       [:actuator
-        (for [{:keys [name rotation]} (:joints plan)
-              :let [{:keys [strength kp kd]} (ms name)]
-              {dof :name :keys [ball frame-axis]} (all-dofs name)]
-          (if ball
-            ;; a ball joint's torque is in its body's frame: the joint
-            ;; frame's axes (Blender's X, Y, Z) there
-            (for [[axis b] [["x" [1 0 0]] ["y" [0 1 0]] ["z" [0 0 1]]]]
-              [:motor {:name (str "muscle/" dof "/" axis) :joint dof
-                       :gear (concat (local-vector (infos (child-of name))
-                                                   (z-up (mv (quat->matrix rotation) (blender->jme b))))
-                                     [0 0 0])
-                       :ctrlrange [(- strength) strength]}])
-            [:position {:name (str "muscle/" dof) :joint dof
-                        :kp (if frame-axis (nth kp frame-axis) kp)
-                        :kv (if frame-axis (nth kd frame-axis) kd)
-                        :forcerange [(- strength) strength]}]))]
-       [:sensor
-        (for [{:keys [name]} (:joints plan)
-              {dof :name :keys [ball]} (all-dofs name)]
-          (if ball
-            (list [:ballquat {:name (str "angle/" dof) :joint dof}]
-                  [:ballangvel {:name (str "speed/" dof) :joint dof}])
-            (list [:jointpos {:name (str "angle/" dof) :joint dof}]
-                  [:jointvel {:name (str "speed/" dof) :joint dof}])))
-        (for [{:keys [id]} (:segments plan)]
-          [:touch {:name (str "touch/" id) :site (str id "/touch")}])]])))))
+   (let [plan (plan-of x)]
+     (if (model/physics-tab? plan)
+       (tab-mjcf plan {:root root})
+       (marker-mjcf plan root)))))
 
 (defn ^:api write!
   "Write `plan` as MJCF to `mjcf-path` and/or URDF to `urdf-path` (nil

@@ -89,6 +89,7 @@
          tiny (fn [n] [:link {:name n}
                        [:inertial [:mass {:value 1e-6}]
                         [:inertia {:ixx 1e-9 :ixy 0.0 :ixz 0.0 :iyy 1e-9 :iyz 0.0 :izz 1e-9}]]])
+
          links (fn links [id]
                  (cons (urdf-link (infos id) meshes (frame-of id))
                        (mapcat links (children id))))
