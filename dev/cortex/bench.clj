@@ -11,6 +11,9 @@
             [cortex.blender-bench :as blender-bench]
             [cortex.body :as body]
             [cortex.sim :as sim]
+            ;; the eyes' rows see through cortex.sight, which cortex.sim
+            ;; does not load
+            [cortex.sight]
             [cortex.blender]
             [cortex.util :as util]
             [cortex.world :as world])

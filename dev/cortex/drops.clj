@@ -133,6 +133,47 @@
      ;; with, as a fraction of that
      :energy-gain (/ (- (apply max es) e0) e0)})))
 
+(def table-creatures
+  "What `-main` drops, in the order of its table: the drop test's
+  creatures, a file each, and the benchmark's chain of 100 (nil)."
+  [["humanoid" "test/fixtures/humanoid/humanoid.blend"]
+   ["heavy-hands" "test/fixtures/humanoid/humanoid-heavy-hands.blend"]
+   ["quadruped" "test/fixtures/designer/quadruped.blend"]
+   ["hand" "Models/test-creature/hand.blend"]
+   ["chain-100" nil]])
+
+(defn- table-creature
+  "A fresh, unbuilt creature from the .blend file at `path`, or the
+  benchmark's chain of 100 when `path` is nil."
+  ^Node [path]
+  (if path
+    ((requiring-resolve 'cortex.blender/load-blender-model) path)
+    ((requiring-resolve 'cortex.bench.creatures/creature)
+     ((requiring-resolve 'cortex.bench.creatures/chain) 100))))
+
+(defn -main
+  "lein run -m cortex.drops: the drop test's fifteen drops on the
+  running engine, as an org table (the physics-trust chapter's)."
+  [& _]
+  ;; every drop first, so that what an engine prints as it starts up
+  ;; does not fall inside the table
+  (let [rows (vec (for [friction [0.25 0.5 1.0]
+                        [name path] table-creatures]
+                    (assoc (drop! (table-creature path) friction) :name name :friction friction)))]
+    (println (str "drop! on " engine/label ", " (java.time.LocalDate/now)))
+    (println (str "| creature    | friction | fastest | segment         | clean fall | past "
+                  "| past (proprioception) | rest  | moved  | energy |"))
+    (println (str "|-------------+----------+---------+-----------------+------------+------"
+                  "+-----------------------+-------+--------+--------|"))
+    (doseq [{:keys [name friction fastest fastest-segment limit worst-past
+                    worst-past-proprioception still-at moved energy-gain]} rows]
+      (println (format "| %-11s | %8.2f | %7.2f | %-15s | %10.2f | %4.2f | %21.2f | %5s | %6.4f | %5.2f%% |"
+                       name (double friction) (double fastest) fastest-segment (double limit)
+                       (double worst-past) (double worst-past-proprioception)
+                       (if still-at (format "%.1f s" (double still-at)) "never")
+                       (double moved) (* 100.0 (double energy-gain))))))
+  (shutdown-agents))
+
 (defn export
   "`creature` (a Node, not yet built) placed and built as `drop!` does
   it, as data in jME's axes (Y up, the floor at y = 0): every segment's

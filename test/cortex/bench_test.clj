@@ -86,3 +86,71 @@
   (let [t (bench/table [["name" :n] ["x" :x]] [{:n "a" :x 1} {:n "b" :skipped "why"}])]
     (is (str/includes? t "(why)"))
     (is (= 4 (count (str/split-lines t))))))
+
+(defn table-starts
+  "Where the tables of the markdown `lines` begin, counting from 0: each
+  fenced block whose info string is empty or text, and the first line
+  of each run of lines starting with |."
+  [lines]
+  (loop [i 0 fenced? false piped? false out []]
+    (if (= i (count lines))
+      out
+      (let [line (nth lines i)
+            [fence info] (re-matches #"\s*```\s*(\S*).*" line)]
+        (cond
+          fence (if fenced?
+                  (recur (inc i) false false out)
+                  (recur (inc i) true false (if (#{"" "text"} info) (conj out i) out)))
+          fenced? (recur (inc i) true false out)
+          (str/starts-with? line "|") (recur (inc i) false true (if piped? out (conj out i)))
+          :else (recur (inc i) false false out))))))
+
+(defn unlabelled-tables
+  "The tables of the markdown `text` with no line Command: `...` in the
+  `n` lines before them, or no Engine: or Measured: YYYY-MM-DD there:
+  [line first-line] of each, counting lines from 1."
+  [text n]
+  (let [lines (vec (str/split-lines text))]
+    (vec (for [i (table-starts lines)
+               :let [before (str/join "\n" (subvec lines (max 0 (- i n)) i))]
+               :when (not (and (re-find #"(?m)^Command: `[^`]+`" before)
+                               (re-find #"Engine: \S" before)
+                               (re-find #"Measured: \d{4}-\d{2}-\d{2}" before)))]
+           [(inc i) (nth lines i)]))))
+
+(deftest unlabelled-tables-are-found
+  (let [label "Command: `bin/lein bench`; Engine: jBullet; Measured: 2026-11-26\n"]
+    (is (= [[2 "```"]] (unlabelled-tables "text\n```\n1 2\n```\n" 4)))
+    (is (= [[1 "| a | b |"]] (unlabelled-tables "| a | b |\n| 1 | 2 |\n" 4)))
+    (is (= [] (unlabelled-tables (str label "\n```\n1 2\n```\n") 4)))
+    (is (= [] (unlabelled-tables "```sh\nbin/lein bench\n```\n" 4)) "a command is not a table")
+    (is (= [[9 "```"]] (unlabelled-tables (str label "\n```\n1\n```\n\nmore\n\n```\n2\n```\n") 4))
+        "each table needs its own label")
+    (is (= [[2 "```"]] (unlabelled-tables "Command: `x`; Engine: jBullet\n```\n1\n```\n" 4))
+        "a table without its date")))
+
+(deftest every-table-of-figures-names-its-command
+  (let [text (slurp "doc/performance.md")]
+    (is (seq (table-starts (str/split-lines text))))
+    (is (= [] (unlabelled-tables text 4))
+        (str "each table of doc/performance.md needs, in the four lines before it, "
+             "Command: `the command that prints it`, Engine: and Measured: YYYY-MM-DD"))))
+
+(defn- source-files
+  "The source files (Clojure, Java, EDN) under the folders `roots`."
+  [roots]
+  (for [root roots
+        ^java.io.File f (file-seq (java.io.File. ^String root))
+        :when (and (.isFile f) (re-find #"\.(clj|cljc|java|edn)$" (.getName f)))]
+    f))
+
+(deftest nothing-requires-the-notebook
+  (let [folder (str "notebook" "/")]
+    (is (= [] (vec (for [^java.io.File f (source-files ["src" "test" "dev" "java" "engine" "spark"])
+                         :when (str/includes? (slurp f) folder)]
+                     (str f))))
+        "no source file names the notebook")
+    (is (= [] (vec (for [^java.io.File f (file-seq (java.io.File. "notebook"))
+                         :when (and (.isFile f) (str/includes? (slurp f) ":tangle"))]
+                     (str f))))
+        "no notebook file has a block to tangle")))
