@@ -94,3 +94,10 @@
             :let [name (.getName chapter)]
             :when (not= name "index.org")]
       (is (str/includes? index (str "[[file:" name "]")) (str name " is not listed in org/index.org")))))
+
+(deftest no-block-is-over-80-lines
+  (doseq [chapter (tangle/chapters "org")
+          {:keys [line body]} (tangle/blocks (str chapter) (slurp chapter))
+          :let [n (count (str/split-lines body))]]
+    (is (<= n 80) (str (.getName ^java.io.File chapter) ":" line ": a block of " n
+                       " lines; split it at a blank line between forms, with prose between"))))
