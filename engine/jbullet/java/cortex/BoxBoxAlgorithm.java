@@ -23,8 +23,9 @@ import javax.vecmath.Vector3f;
  * the axis of least penetration, preferring a face axis unless an edge
  * axis is 5% better; no contact when any axis separates them. A face
  * axis clips the other box's face most opposed to it against the sides
- * of the reference face and keeps the points below it (at most four:
- * the deepest, then each next the farthest from those kept); an edge
+ * of the reference face and keeps the points below it, in the order
+ * Bullet's detector gives them (at most four: beyond that the deepest,
+ * then those a quarter turn apart round the centre); an edge
  * axis gives the closest points of the two edges. The boxes' full half
  * extents (with margin) are used, as Blender's, and the pair's manifold
  * keeps its points within Bullet 2.8's relative breaking threshold.

@@ -218,7 +218,7 @@
                                  (* dt (- (* (get-in s0 [i j]) (inertia j)) (get-in s1 [i j]))))))))]
         (m*v r (mapv - wb (solve3 jac f)))))))
 
-(defn gyroscopic-step!
+(defn blender-velocities!
   "Before a substep of `dt`: give each moving body of `space` the
   velocities Bullet 2.8 and later give it before their solver, where
   jBullet (Bullet 2.72) gives others. Bullet 2.8 damps the velocities
