@@ -387,3 +387,39 @@
       (is (gaps-hold? r addon-joints [2 3 at-4s]))
       (is (< (relative-median r 2) 0.02))
       (is (< (relative-median r at-4s) 0.02)))))
+
+(defn step-trace
+  "Fixture `name` played in its world, and after each frame from `from`
+  to `to` (one frame of 1/60 s is one step when the file has one substep
+  a frame): [{:frame :bodies {name {:p :v :w}} :manifolds (see
+  cortex.contact-points/points, a measuring tool in each engine's dev
+  folder)}]."
+  [name from to]
+  (let [^Node creature (bp/physics-body! (bp/load-creature (str folder name ".blend")))
+        _ (.updateGeometricState creature)
+        ;; each body by its object's name (later, deeper nodes win)
+        controls (into {} (for [s (util/node-seq creature)
+                                :when (instance? Node s)
+                                :let [c (.getControl (bp/body-spatial s) RigidBodyControl)]
+                                :when c]
+                            [c (.getName ^Node s)]))
+        points (requiring-resolve 'cortex.contact-points/points)
+        xyz (fn [^Vector3f v] [(.x v) (.y v) (.z v)])
+        trace (atom [])
+        w (world/world (util/nodify [creature]) {} world/no-op world/no-op)
+        frame (atom 0)]
+    (.attach (.getStateManager ^SimpleApplication w)
+             (proxy [AbstractAppState] []
+               (update [_]
+                 (let [f (dec (swap! frame inc))]
+                   (when (<= from f to)
+                     (swap! trace conj
+                            {:frame f
+                             :bodies (into (sorted-map)
+                                           (for [[^RigidBodyControl c n] controls :when (pos? (.getMass c))]
+                                             [n {:p (xyz (.getPhysicsLocation c)) :v (xyz (.getLinearVelocity c))
+                                                 :w (xyz (.getAngularVelocity c))}]))
+                             :manifolds (points (.getPhysicsSpace ^RigidBodyControl (key (first controls)))
+                                                #(get controls % (str %)))}))))))
+    (world/run-world! w (+ to 2))
+    @trace))
