@@ -166,12 +166,14 @@ public class MeteredSixDofJoint extends SixDofJoint {
         /**
          * Is angle j held by a limit in this substep, as Bullet 2.8 counts
          * it: beyond a range limit, or locked (an angle whose limits are
-         * equal is held always; here it is widened by ANGLE_LOCK_MARGIN)?
+         * equal, here widened by ANGLE_LOCK_MARGIN) and off its lock?
          */
         private boolean angleHeld(int j) {
             com.bulletphysics.dynamics.constraintsolver.RotationalLimitMotor m = angularLimits[j];
-            return m.currentLimit != 0
-                || (m.loLimit <= m.hiLimit && m.hiLimit - m.loLimit <= 3 * ANGLE_LOCK_MARGIN);
+            if (!m.enableMotor && m.loLimit <= m.hiLimit && m.hiLimit - m.loLimit <= 3 * ANGLE_LOCK_MARGIN) {
+                return getAngle(j) != lockAt[j];
+            }
+            return m.currentLimit != 0;
         }
 
         /** (I^-1 t) . t of body `body`, world axes. */
