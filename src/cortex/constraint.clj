@@ -494,7 +494,7 @@
       (read [_ _])
       com.jme3.bullet.PhysicsTickListener
       (prePhysicsTick [_ s dt]
-        (when settings (engine/gyroscopic-step! s dt))
+        (when settings (engine/blender-velocities! s dt))
         (when (zero? @substeps)
           (let [^com.jme3.bullet.PhysicsSpace s s
                 in-space (filter (set (.getJointList s)) ordered)]

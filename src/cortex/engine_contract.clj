@@ -14,7 +14,7 @@
     configure-space! [[1] "set a PhysicsSpace up as cortex simulates"]
     solver-iterations [:value "the solver's passes per Bullet step in cortex's spaces"]
     blender-solver-order! [[1] "visit a space's constraints in the order Blender's world does"]
-    gyroscopic-step! [[2] "before a substep of dt: the engine's gyroscopic term, where it has none of its own"]
+    blender-velocities! [[2] "before a substep of dt: the velocities Blender's Bullet gives bodies before its solver (damping, gyroscopic term), where the engine's own differ"]
     add-all! [[2] "add the bodies under a spatial, and their joints, to a space"]
     reduce-contacts [[5] "fold a function over the contact manifolds of a space's last step"]
     collision-object [[1] "what the contact manifolds name a body by"]

@@ -23,8 +23,9 @@ import javax.vecmath.Vector3f;
  * the axis of least penetration, preferring a face axis unless an edge
  * axis is 5% better; no contact when any axis separates them. A face
  * axis clips the other box's face most opposed to it against the sides
- * of the reference face and keeps the points below it (at most four:
- * the deepest, then each next the farthest from those kept); an edge
+ * of the reference face and keeps the points below it, in the order
+ * Bullet's detector gives them (at most four: beyond that the deepest,
+ * then those a quarter turn apart round the centre); an edge
  * axis gives the closest points of the two edges. The boxes' full half
  * extents (with margin) are used, as Blender's, and the pair's manifold
  * keeps its points within Bullet 2.8's relative breaking threshold.
@@ -229,29 +230,28 @@ public final class BoxBoxAlgorithm extends CollisionAlgorithm {
         // the reference face's outward normal, towards the incident box
         double[] nr = refA ? n : normalOnB;
         double front = dot(nr, cr) + hr[k];
-        // the incident face: the one most opposed to nr
-        int f = 0;
-        double most = -1;
-        for (int m = 0; m < 3; m++) {
-            double v = Math.abs(dot(I[m], nr));
-            if (v > most) {
-                most = v;
-                f = m;
-            }
-        }
+        // the incident face: the one most opposed to nr, ties broken as
+        // Bullet's detector breaks them
+        double[] an = {Math.abs(dot(I[0], nr)), Math.abs(dot(I[1], nr)), Math.abs(dot(I[2], nr))};
+        int f = an[1] > an[0] ? (an[1] > an[2] ? 1 : 2) : (an[0] > an[2] ? 0 : 2);
         double[] fc = axpy(ci, -Math.signum(dot(I[f], nr)) * hi[f], I[f]);
-        int u1 = (f + 1) % 3;
-        int u2 = (f + 2) % 3;
+        // its corners in Bullet's order: its other two axes a1 < a2,
+        // (-a1 -a2), (-a1 +a2), (+a1 +a2), (+a1 -a2)
+        int a1 = f == 0 ? 1 : 0;
+        int a2 = f == 2 ? 1 : 2;
         double[][] poly = {
-            axpy(axpy(fc, hi[u1], I[u1]), hi[u2], I[u2]),
-            axpy(axpy(fc, -hi[u1], I[u1]), hi[u2], I[u2]),
-            axpy(axpy(fc, -hi[u1], I[u1]), -hi[u2], I[u2]),
-            axpy(axpy(fc, hi[u1], I[u1]), -hi[u2], I[u2])};
-        for (int m = 1; m <= 2; m++) {
-            int s = (k + m) % 3;
+            axpy(axpy(fc, -hi[a1], I[a1]), -hi[a2], I[a2]),
+            axpy(axpy(fc, -hi[a1], I[a1]), hi[a2], I[a2]),
+            axpy(axpy(fc, hi[a1], I[a1]), hi[a2], I[a2]),
+            axpy(axpy(fc, hi[a1], I[a1]), -hi[a2], I[a2])};
+        // clipped by the reference face's sides: its lower axis first, the
+        // negative side first, as Bullet's detector clips them
+        int r1 = k == 0 ? 1 : 0;
+        int r2 = k == 2 ? 1 : 2;
+        for (int s : new int[] {r1, r2}) {
             double c = dot(R[s], cr);
-            poly = clip(poly, R[s], c + hr[s], 1);
-            poly = clip(poly, R[s], c - hr[s], -1);
+            poly = clip(poly, R[s], c, hr[s], -1);
+            poly = clip(poly, R[s], c, hr[s], 1);
         }
 
         int count = 0;
@@ -265,33 +265,27 @@ public final class BoxBoxAlgorithm extends CollisionAlgorithm {
                 count++;
             }
         }
-        boolean[] kept = new boolean[count];
+        // all of them when there are at most four, in the polygon's
+        // order; else Bullet's choice: the deepest first, then those whose
+        // angles round the polygon's centre are nearest a quarter turn apart
         int[] chosen = new int[Math.min(4, count)];
-        for (int c = 0; c < chosen.length; c++) {
-            int pick = -1;
-            double score = -1;
-            for (int m = 0; m < count; m++) {
-                if (kept[m]) {
-                    continue;
-                }
-                double sc;
-                if (c == 0) {
-                    sc = deps[m];
-                } else {
-                    sc = Double.MAX_VALUE;
-                    for (int q = 0; q < c; q++) {
-                        double[] e = pts[chosen[q]];
-                        double[] v = {pts[m][0] - e[0], pts[m][1] - e[1], pts[m][2] - e[2]};
-                        sc = Math.min(sc, dot(v, v));
-                    }
-                }
-                if (sc > score) {
-                    score = sc;
-                    pick = m;
+        if (count <= 4) {
+            for (int c = 0; c < count; c++) {
+                chosen[c] = c;
+            }
+        } else {
+            int deepest = 0;
+            for (int m = 1; m < count; m++) {
+                if (deps[m] > deps[deepest]) {
+                    deepest = m;
                 }
             }
-            kept[pick] = true;
-            chosen[c] = pick;
+            double[] xy = new double[2 * count];
+            for (int m = 0; m < count; m++) {
+                xy[2 * m] = dot(R[r1], pts[m]) - dot(R[r1], cr);
+                xy[2 * m + 1] = dot(R[r2], pts[m]) - dot(R[r2], cr);
+            }
+            chosen = cull(count, xy, 4, deepest);
         }
         for (int c : chosen) {
             double[] p = pts[c];
@@ -302,23 +296,81 @@ public final class BoxBoxAlgorithm extends CollisionAlgorithm {
         }
     }
 
-    /** The polygon `poly` clipped to side*(axis . p) <= side*offset. */
-    private static double[][] clip(double[][] poly, double[] axis, double offset, int side) {
+    /** `poly` clipped to side * (axis . p - centre) < half. */
+    private static double[][] clip(double[][] poly, double[] axis, double centre, double half, int side) {
         java.util.ArrayList<double[]> outPts = new java.util.ArrayList<>();
         int n = poly.length;
         for (int m = 0; m < n; m++) {
             double[] p = poly[m];
             double[] q = poly[(m + 1) % n];
-            double dp = side * (dot(axis, p) - offset);
-            double dq = side * (dot(axis, q) - offset);
-            if (dp <= 0) {
+            double xp = dot(axis, p) - centre;
+            double xq = dot(axis, q) - centre;
+            boolean pin = side * xp < half;
+            boolean qin = side * xq < half;
+            if (pin) {
                 outPts.add(p);
             }
-            if ((dp < 0 && dq > 0) || (dp > 0 && dq < 0)) {
-                double t = dp / (dp - dq);
+            if (pin != qin) {
+                double t = (side * half - xp) / (xq - xp);
                 outPts.add(new double[] {p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1]), p[2] + t * (q[2] - p[2])});
             }
         }
         return outPts.toArray(new double[0][]);
+    }
+
+    /** Bullet's cullPoints2: `m` of the `n` points `p` (x, y pairs), `i0` first. */
+    static int[] cull(int n, double[] p, int m, int i0) {
+        double a = 0;
+        double cx = 0;
+        double cy = 0;
+        if (n == 1) {
+            cx = p[0];
+            cy = p[1];
+        } else if (n == 2) {
+            cx = 0.5 * (p[0] + p[2]);
+            cy = 0.5 * (p[1] + p[3]);
+        } else {
+            for (int i = 0; i < n - 1; i++) {
+                double q = p[i * 2] * p[i * 2 + 3] - p[i * 2 + 2] * p[i * 2 + 1];
+                a += q;
+                cx += q * (p[i * 2] + p[i * 2 + 2]);
+                cy += q * (p[i * 2 + 1] + p[i * 2 + 3]);
+            }
+            double q = p[n * 2 - 2] * p[1] - p[0] * p[n * 2 - 1];
+            a = Math.abs(a + q) > 1.1920929E-7 ? 1.0 / (3.0 * (a + q)) : 1e18;
+            cx = a * (cx + q * (p[n * 2 - 2] + p[0]));
+            cy = a * (cy + q * (p[n * 2 - 1] + p[1]));
+        }
+        double[] angle = new double[n];
+        for (int i = 0; i < n; i++) {
+            angle[i] = Math.atan2(p[i * 2 + 1] - cy, p[i * 2] - cx);
+        }
+        boolean[] avail = new boolean[n];
+        java.util.Arrays.fill(avail, true);
+        avail[i0] = false;
+        int[] ret = new int[m];
+        ret[0] = i0;
+        for (int j = 1; j < m; j++) {
+            double want = j * (2 * Math.PI / m) + angle[i0];
+            if (want > Math.PI) {
+                want -= 2 * Math.PI;
+            }
+            double best = 1e9;
+            ret[j] = i0;
+            for (int i = 0; i < n; i++) {
+                if (avail[i]) {
+                    double diff = Math.abs(angle[i] - want);
+                    if (diff > Math.PI) {
+                        diff = 2 * Math.PI - diff;
+                    }
+                    if (diff < best) {
+                        best = diff;
+                        ret[j] = i;
+                    }
+                }
+            }
+            avail[ret[j]] = false;
+        }
+        return ret;
     }
 }

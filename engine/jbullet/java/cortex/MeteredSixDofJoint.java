@@ -46,6 +46,18 @@ public class MeteredSixDofJoint extends SixDofJoint {
      */
     public static final float ERP = 0.2f;
 
+    /**
+     * How far (radians) a locked angle may start from its lock and still
+     * be taken to start on it. Blender's two frames of a constraint are
+     * one matrix, and an angle it locks at the start pose starts exactly
+     * on the lock, held by no row until it moves; cortex's frames, made
+     * through jME's float rotations, start it up to 1e-7 off, and a row
+     * holding that from the first step turned addon-ragdoll's left arm
+     * 0.03 rad/s from Blender's in it. So such an angle is locked at the
+     * angle it starts at.
+     */
+    public static final float LOCK_NOISE = 1e-6f;
+
     private final RotationalLimitMotor[] motors = new RotationalLimitMotor[3];
     private final TranslationalLimitMotor linearMotor;
 
@@ -61,6 +73,8 @@ public class MeteredSixDofJoint extends SixDofJoint {
         private final javax.vecmath.Vector3f ta = new javax.vecmath.Vector3f();
         private final javax.vecmath.Vector3f tb = new javax.vecmath.Vector3f();
         private final javax.vecmath.Matrix3f inertia = new javax.vecmath.Matrix3f();
+        private final float[] lockAt = new float[3];
+        private boolean lockSet;
 
         Metered(RigidBody a, RigidBody b, Transform fa, Transform fb, boolean useA) {
             super(a, b, fa, fb, useA);
@@ -97,11 +111,29 @@ public class MeteredSixDofJoint extends SixDofJoint {
          */
         private void angularRow(int i, float dt) {
             com.bulletphysics.dynamics.constraintsolver.RotationalLimitMotor m = angularLimits[i];
-            if (!m.needApplyTorques()) {
+            // a locked angle (limits equal, widened by ANGLE_LOCK_MARGIN) is
+            // held whenever it is off the lock, by however little, as Bullet
+            // 2.8 holds an angle whose limits are equal; the widened range
+            // alone would leave it free within ANGLE_LOCK_MARGIN
+            boolean locked = !m.enableMotor && m.loLimit <= m.hiLimit
+                && m.hiLimit - m.loLimit <= 3 * ANGLE_LOCK_MARGIN;
+            if (!lockSet) {
+                // where each locked angle is held: its lock, or the angle
+                // it starts at when that lies within float noise of it
+                for (int k = 0; k < 3; k++) {
+                    com.bulletphysics.dynamics.constraintsolver.RotationalLimitMotor l = angularLimits[k];
+                    float centre = 0.5f * (l.loLimit + l.hiLimit);
+                    float start = getAngle(k);
+                    lockAt[k] = Math.abs(start - centre) < LOCK_NOISE ? start : centre;
+                }
+                lockSet = true;
+            }
+            float off = getAngle(i) - lockAt[i];
+            if (locked ? off == 0f : !m.needApplyTorques()) {
                 return;
             }
             getAxis(i, axis);
-            if (m.currentLimit == 0) {
+            if (!locked && m.currentLimit == 0) {
                 m.solveAngularLimits(dt, axis, 1f / jacAng[i].getDiagonal(), rbA, rbB);
                 return;
             }
@@ -113,11 +145,9 @@ public class MeteredSixDofJoint extends SixDofJoint {
             float error = m.currentLimitError;
             float lo = -threshold;
             float hi = threshold;
-            if (m.hiLimit - m.loLimit <= 3 * ANGLE_LOCK_MARGIN) {
-                // a locked angle, widened by ANGLE_LOCK_MARGIN: held both
-                // ways, towards the lock itself, as Bullet 2.8 holds an
-                // angle whose limits are equal
-                error += m.currentLimit == 1 ? (float) -ANGLE_LOCK_MARGIN : (float) ANGLE_LOCK_MARGIN;
+            if (locked) {
+                // held both ways, towards the lock itself
+                error = off;
             } else if (m.currentLimit == 1) {
                 lo = 0f;
             } else {
@@ -136,12 +166,14 @@ public class MeteredSixDofJoint extends SixDofJoint {
         /**
          * Is angle j held by a limit in this substep, as Bullet 2.8 counts
          * it: beyond a range limit, or locked (an angle whose limits are
-         * equal is held always; here it is widened by ANGLE_LOCK_MARGIN)?
+         * equal, here widened by ANGLE_LOCK_MARGIN) and off its lock?
          */
         private boolean angleHeld(int j) {
             com.bulletphysics.dynamics.constraintsolver.RotationalLimitMotor m = angularLimits[j];
-            return m.currentLimit != 0
-                || (m.loLimit <= m.hiLimit && m.hiLimit - m.loLimit <= 3 * ANGLE_LOCK_MARGIN);
+            if (!m.enableMotor && m.loLimit <= m.hiLimit && m.hiLimit - m.loLimit <= 3 * ANGLE_LOCK_MARGIN) {
+                return getAngle(j) != lockAt[j];
+            }
+            return m.currentLimit != 0;
         }
 
         /** (I^-1 t) . t of body `body`, world axes. */

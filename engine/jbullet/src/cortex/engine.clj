@@ -195,26 +195,19 @@
         col (fn [k] (mapv (fn [row bi] (assoc row k bi)) m b))]
     (mapv #(/ (det (col %)) d) (range 3))))
 
-(defn gyroscopic-step!
-  "Before a substep of `dt`: turn each moving body of `space` as Bullet
-  2.8 and later do by default (BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY,
-  which Blender's simulation has and jBullet, Bullet 2.72, lacks): one
-  Newton step of the implicit gyroscopic term, in the body's frame,
-  I w' = I w - dt w' x I w'."
-  [^PhysicsSpace space dt]
-  (let [dt (double dt)]
-    (doseq [^PhysicsRigidBody b (.getRigidBodyList space)
-            :when (pos? (.getMass b))
-            :let [^RigidBody rb (.getObjectId b)]
-            :when (.isActive rb)
-            :let [inv (.getInvInertiaDiagLocal rb (javax.vecmath.Vector3f.))
-                  inertia (mapv #(/ 1.0 (double %)) [(.x inv) (.y inv) (.z inv)])]
-            ;; a body that cannot turn about some axis has nothing to turn
-            :when (every? #(Double/isFinite %) inertia)]
-      (let [w (.getAngularVelocity rb (javax.vecmath.Vector3f.))
-            basis (.basis (.getWorldTransform rb (Transform.)))
+(defn- gyroscopic
+  "Body `rb`'s angular velocity `w` after one Newton step of Bullet 2.8's
+  implicit gyroscopic term over `dt`, in the body's frame: I w' = I w -
+  dt w' x I w'. [x y z] doubles; `w` itself for a body that cannot turn
+  about some axis."
+  [^RigidBody rb w dt]
+  (let [inv (.getInvInertiaDiagLocal rb (javax.vecmath.Vector3f.))
+        inertia (mapv #(/ 1.0 (double %)) [(.x inv) (.y inv) (.z inv)])]
+    (if-not (every? #(Double/isFinite %) inertia)
+      w
+      (let [basis (.basis (.getWorldTransform rb (Transform.)))
             r (vec (for [i (range 3)] (vec (for [j (range 3)] (double (.getElement basis (int i) (int j)))))))
-            wb (m*v (apply mapv vector r) [(.x w) (.y w) (.z w)])
+            wb (m*v (apply mapv vector r) w)
             ib (mapv * inertia wb)
             f (mapv #(* dt %) (cross3 wb ib))
             s0 (skew wb) s1 (skew ib)
@@ -222,9 +215,42 @@
             jac (vec (for [i (range 3)]
                        (vec (for [j (range 3)]
                               (+ (if (= i j) (inertia i) 0.0)
-                                 (* dt (- (* (get-in s0 [i j]) (inertia j)) (get-in s1 [i j]))))))))
-            [x y z] (m*v r (mapv - wb (solve3 jac f)))]
-        (.setAngularVelocity rb (javax.vecmath.Vector3f. (float x) (float y) (float z)))))))
+                                 (* dt (- (* (get-in s0 [i j]) (inertia j)) (get-in s1 [i j]))))))))]
+        (m*v r (mapv - wb (solve3 jac f)))))))
+
+(defn blender-velocities!
+  "Before a substep of `dt`: give each moving body of `space` the
+  velocities Bullet 2.8 and later give it before their solver, where
+  jBullet (Bullet 2.72) gives others. Bullet 2.8 damps the velocities
+  first, then adds gravity (in its solver) and turns the body by its
+  implicit gyroscopic term (BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY,
+  on by default; jBullet has none): one Newton step of I w' = I w - dt
+  w' x I w', in the body's frame. jBullet adds gravity first and damps
+  the sum. So the damping and the gyroscopic step are taken here, and
+  the velocities set so that jBullet's own gravity and damping, which
+  follow, end where Bullet 2.8's do: the linear velocity v + g dt
+  ((1 - d)^-dt - 1), the angular one divided by jBullet's (1 - d)^dt.
+  (Forces other than gravity are damped as jBullet damps them.)"
+  [^PhysicsSpace space dt]
+  (let [dt (double dt)]
+    (doseq [^PhysicsRigidBody b (.getRigidBodyList space)
+            :when (pos? (.getMass b))
+            :let [^RigidBody rb (.getObjectId b)]
+            :when (.isActive rb)]
+      (let [keep-lin (Math/pow (- 1.0 (double (.getLinearDamping rb))) dt)
+            keep-ang (Math/pow (- 1.0 (double (.getAngularDamping rb))) dt)
+            w (.getAngularVelocity rb (javax.vecmath.Vector3f.))
+            [x y z] (gyroscopic rb (mapv #(* keep-ang (double %)) [(.x w) (.y w) (.z w)]) dt)
+            ;; jBullet damps what follows by keep-ang; nothing to undo at 0
+            undo (if (pos? keep-ang) (/ 1.0 keep-ang) 1.0)]
+        (.setAngularVelocity rb (javax.vecmath.Vector3f. (float (* undo x)) (float (* undo y)) (float (* undo z))))
+        (when (pos? keep-lin)
+          (let [v (.getLinearVelocity rb (javax.vecmath.Vector3f.))
+                g (.getGravity rb (javax.vecmath.Vector3f.))
+                k (* (double (.getInvMass rb)) dt (- (/ 1.0 keep-lin) 1.0))]
+            (.setLinearVelocity rb (javax.vecmath.Vector3f. (float (+ (.x v) (* k (.x g))))
+                                                            (float (+ (.y v) (* k (.y g))))
+                                                            (float (+ (.z v) (* k (.z g))))))))))))
 
 (defn hull-points
   "The points of `shape`'s hull (or of its first child's, for a compound

@@ -247,10 +247,10 @@
   [^PhysicsSpace space]
   (.setMode ^SolverInfo (.getSolverInfo space) (int (bit-or 4 256))))
 
-(defn gyroscopic-step!
+(defn blender-velocities!
   "Before a substep: nothing here; native Bullet's bodies already take
   the implicit gyroscopic term (BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY,
-  its default), as Blender's do."
+  its default) and are damped before gravity is added, as Blender's."
   [_space _dt]
   nil)
 
