@@ -17,6 +17,8 @@
           mass (into {} (map (juxt :id :mass)) (:segments pl))
           total (reduce + (vals mass))
           s (sim/simulation c (merge {:floor {:height 0 :friction 1.0} :observe #{:segments}} sopts))
+          _ (when (System/getenv "BOXBOX") (clojure.lang.Reflector/invokeStaticMethod "cortex.BoxBoxAlgorithm" "register" (object-array [(.getDispatcher ^com.bulletphysics.dynamics.DynamicsWorld (.getDynamicsWorld ^com.jme3.bullet.PhysicsSpace (:space s)))])))
+          _ (when (System/getenv "BLENDERSOLVER") (cortex.engine/blender-solver-order! (:space s)))
           steps (long (* 60 secs))
           res (loop [i 0 still nil last nil]
                 (if (= i steps) [last still]

@@ -40,7 +40,7 @@
           (let [r (:rotation (segs "torso"))]
             (println "     torso up" (mapv fmt (p/rotate r [0 1 0])) "fwd" (mapv fmt (p/rotate r [1 0 0])) "pos" (mapv fmt (:position (segs "torso")))))
           (doseq [n ["lower-leg-front-r" "lower-leg-front-l" "lower-leg-back-r" "lower-leg-back-l" "head" "tail-3"]]
-            (println "    " n (mapv fmt (:position (segs n))) "v" (mapv fmt (:velocity (segs n))))))
+            (println "    " n (mapv fmt (:position (segs n))) "v" (mapv fmt (:velocity (segs n))) "axis" (mapv fmt (p/rotate (:rotation (segs n)) [0 1 0])))))
         (when (System/getenv "JOINTS")
           (doseq [[n j] (sort js)]
             (println "    " n (if (= :hinge (:type j)) (str (fmt (:angle j)) " v " (fmt (:velocity j)) " lim " (:limit (described n)))
