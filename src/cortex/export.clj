@@ -124,6 +124,24 @@
                  :range range :stiffness stiffness :damping damping}]))))
 
 
+(defn- body-element
+  "The <body> of segment `id` hung from `parent` (nil: the world), given
+  the writers' `infos`, the tree's `joint` and the degrees of freedom
+  `all-dofs`: its place, joints and inertial, then `contents`."
+  [infos joint all-dofs id parent & contents]
+  (let [{:keys [R pos com principal moments mass static?] :as info} (infos id)
+        j (joint id)
+        P (if parent (:R (infos parent)) identity3)]
+    (into [:body {:name id
+                  :pos (if parent (mv (transpose P) (v- pos (:pos (infos parent)))) pos)
+                  :quat (wxyz (mm (transpose P) R))}
+           (cond j (mjcf-joints info j (all-dofs (:name j)))
+                 (not static?) [:freejoint {:name (str id "/free")}])
+           (when-not static?
+             [:inertial {:pos com :quat (wxyz principal) :mass (double mass)
+                         :diaginertia moments}])]
+          contents)))
+
 (declare tab-mjcf)
 
 (defn- marker-mjcf
@@ -138,23 +156,14 @@
         eyes (group-by :segment (:eyes plan))
         child-of (into {} (for [[child j] joint] [(:name j) child]))
         body (fn body [id parent]
-               (let [{:keys [R pos com principal moments mass static? shape] :as info} (infos id)
-                     j (joint id)
-                     P (if parent (:R (infos parent)) identity3)]
-                 [:body {:name id
-                         :pos (if parent (mv (transpose P) (v- pos (:pos (infos parent)))) pos)
-                         :quat (wxyz (mm (transpose P) R))}
-                  (cond j (mjcf-joints info j (all-dofs (:name j)))
-                        (not static?) [:freejoint {:name (str id "/free")}])
-                  (when-not static?
-                    [:inertial {:pos com :quat (wxyz principal) :mass (double mass)
-                                :diaginertia moments}])
-                  (map-indexed #(piece-geom info meshes %1 %2) (pieces shape))
-                  (let [[c half] (bounds (map z-up (shape-points shape)))]
-                    [:site {:name (str id "/touch") :type "box" :pos c
-                            :size (mapv #(+ 0.01 (double %)) half) :rgba [0 0 0 0]}])
-                  (map #(eye-camera info %) (eyes id))
-                  (map #(body % id) (children id))]))]
+               (let [{:keys [shape] :as info} (infos id)]
+                 (body-element infos joint all-dofs id parent
+                               (map-indexed #(piece-geom info meshes %1 %2) (pieces shape))
+                               (let [[c half] (bounds (map z-up (shape-points shape)))]
+                                 [:site {:name (str id "/touch") :type "box" :pos c
+                                         :size (mapv #(+ 0.01 (double %)) half) :rgba [0 0 0 0]}])
+                               (map #(eye-camera info %) (eyes id))
+                               (map #(body % id) (children id)))))]
     (xml
      [:mujoco {:model (:creature plan)}
       (str "written by cortex.export from the plan of creature " (:creature plan)
@@ -268,24 +277,14 @@
         all-dofs (model/tab-plan-dofs plan t)
         meshes (mesh-files plan)
         body (fn body [id parent]
-               (let [{:keys [R pos com principal moments mass static? shape collision-groups]
-                      :as info} (infos id)
-                     j (joint id)
-                     P (if parent (:R (infos parent)) identity3)]
-                 [:body {:name id
-                         :pos (if parent (mv (transpose P) (v- pos (:pos (infos parent)))) pos)
-                         :quat (wxyz (mm (transpose P) R))}
-                  (cond j (mjcf-joints info j (all-dofs (:name j)))
-                        (not static?) [:freejoint {:name (str id "/free")}])
-                  (when-not static?
-                    [:inertial {:pos com :quat (wxyz principal) :mass (double mass)
-                                :diaginertia moments}])
-                  (map-indexed (fn [k piece]
-                                 (cond-> (piece-geom info meshes k piece)
-                                   collision-groups (update 1 assoc :contype collision-groups
-                                                            :conaffinity collision-groups)))
-                               (pieces shape))
-                  (map #(body % id) (children id))]))
+               (let [{:keys [shape collision-groups] :as info} (infos id)]
+                 (body-element infos joint all-dofs id parent
+                               (map-indexed (fn [k piece]
+                                              (cond-> (piece-geom info meshes k piece)
+                                                collision-groups (update 1 assoc :contype collision-groups
+                                                                         :conaffinity collision-groups)))
+                                            (pieces shape))
+                               (map #(body % id) (children id)))))
         world (:world plan)
         step (double (or (:step world) (/ 1.0 240)))
         excluded (for [{:keys [segments settings] :as c} (concat (vals joint) loops)
