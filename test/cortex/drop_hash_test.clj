@@ -14,26 +14,7 @@
 
 (def ^:private hashes-file "test/fixtures/drop-hashes.edn")
 
-(def ^:private creatures
-  "name -> [how it is made, path]"
-  (array-map
-   "worm" [:markers "assets/Models/test-creature/worm.blend"]
-   "hand" [:markers "assets/Models/test-creature/hand.blend"]
-   "worm-eyes" [:markers "assets/Models/test-creature/worm-eyes.blend"]
-   "quadruped" [:markers "test/fixtures/designer/quadruped.blend"]
-   "humanoid" [:markers "test/fixtures/humanoid/humanoid.blend"]
-   "humanoid-heavy-hands" [:markers "test/fixtures/humanoid/humanoid-heavy-hands.blend"]
-   "stranger-hand" [:markers "test/fixtures/strangers/hand.blend"]
-   "stranger-humanoid" [:markers "test/fixtures/strangers/humanoid.blend"]
-   "stranger-worm-eye" [:markers "test/fixtures/strangers/worm-eye.blend"]
-   ;; the seed's one hull a segment, as every creature was built before
-   ;; shapes were chosen: these keep the hashes they had then
-   "hand/hulls" [:markers "assets/Models/test-creature/hand.blend" {:shapes :hull}]
-   "quadruped/hulls" [:markers "test/fixtures/designer/quadruped.blend" {:shapes :hull}]
-   "stranger-hand/hulls" [:markers "test/fixtures/strangers/hand.blend" {:shapes :hull}]
-   "stranger-humanoid/hulls" [:markers "test/fixtures/strangers/humanoid.blend" {:shapes :hull}]
-   "physics" [:physics-tab "test/fixtures/blend/b45/physics.blend"]
-   "ragdoll" [:physics-tab "test/fixtures/physics-sim/ragdoll.blend"]))
+(def ^:private creatures drops/pinned)
 
 (defn drop-hash
   "The hash of creature `name`'s 10 s drop on the running engine: every

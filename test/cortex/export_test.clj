@@ -46,9 +46,8 @@
   1 m above y = 0 (as cortex.drops/place! places it), planned and
   built."
   [fixture]
-  (let [c (util/load-blender-model (fixtures fixture))
-        [lo] (drops/extent c)]
-    (.move c 0 (float (- 1.0 (double lo))) 0)
+  (let [c (util/load-blender-model (fixtures fixture))]
+    (drops/lift! c)
     (let [p (plan/plan c)]
       (body/body! c)
       [c p])))

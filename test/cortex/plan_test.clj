@@ -14,17 +14,10 @@
            (com.jme3.scene Node)))
 
 (def ^:private creatures
-  "name -> [how it is made, path]"
-  (array-map
-   "worm" [:markers "assets/Models/test-creature/worm.blend"]
-   "hand" [:markers "assets/Models/test-creature/hand.blend"]
-   "worm-eyes" [:markers "assets/Models/test-creature/worm-eyes.blend"]
-   "quadruped" [:markers "test/fixtures/designer/quadruped.blend"]
-   "humanoid" [:markers "test/fixtures/humanoid/humanoid.blend"]
-   "stranger-hand" [:markers "test/fixtures/strangers/hand.blend"]
-   "stranger-worm-eye" [:markers "test/fixtures/strangers/worm-eye.blend"]
-   "physics" [:physics-tab "test/fixtures/blend/b45/physics.blend"]
-   "ragdoll" [:physics-tab "test/fixtures/physics-sim/ragdoll.blend"]))
+  "The pinned drops (cortex.drops/pinned) whose plans are checked: one of
+  each kind, without the seed's hulls."
+  (select-keys drops/pinned ["worm" "hand" "worm-eyes" "quadruped" "humanoid" "stranger-hand"
+                             "stranger-worm-eye" "physics" "ragdoll"]))
 
 (defn- fresh
   "Creature `name`, loaded and placed as the pinned drops place it (its
@@ -32,9 +25,7 @@
   ^Node [name]
   (let [[how path] (creatures name)
         c (util/load-blender-model path)]
-    (when (= :markers how)
-      (let [[lo] (drops/extent c)]
-        (.move c 0 (float (- 1.0 (double lo))) 0)))
+    (when (= :markers how) (drops/lift! c))
     c))
 
 (defn- built

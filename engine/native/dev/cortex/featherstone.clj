@@ -29,9 +29,8 @@
   is 1 m above the floor at 0, then given its body (sleeping off, as
   cortex.compare builds it): [creature height]."
   [^Node creature]
-  (let [[lo hi] (drops/extent creature)]
-    (.move creature 0 (float (- 1.0 lo)) 0)
-    [(body/body! creature {:sleeping-thresholds [0 0]}) (- hi lo)]))
+  (let [[lo hi] (drops/lift! creature)]
+    [(body/body! creature {:sleeping-thresholds [0 0]}) (- (double hi) (double lo))]))
 
 (defn- quat ^Quaternion [[x y z w]] (Quaternion. (float x) (float y) (float z) (float w)))
 
