@@ -39,6 +39,9 @@ OUT.json, by fixture name:
   cortex's creature is when its muscles are sent nothing), "seconds" long,
   read every 1/60 s (cortex's step; MuJoCo's own is the MJCF's): the centre of
   mass height every step, and the fastest body speed over the last 0.5 s.
+- "held" (where the fixture asks, "held": true): the same drop with
+  actuation on and every control 0, so that each position servo holds
+  its joint at 0, the pose as built (a point joint's motors push nothing).
 - "urdf": check_urdf's exit code and output; PyBullet's link masses; and the
   same drop in PyBullet (1/60 s step in four substeps, floor friction 1:
   Bullet multiplies).
@@ -161,7 +164,7 @@ def drives(m, fixture):
     return out
 
 
-def mj_drop(path, seconds):
+def mj_drop(path, seconds, held=False):
     floored = add_floor(path, 0)
     m, err, _ = load(floored)
     os.remove(floored)
@@ -169,8 +172,11 @@ def mj_drop(path, seconds):
         return {"error": err}
     # cortex's drop sends its muscles no action, and they pull nothing; an
     # exported position servo told nothing (ctrl 0) would hold its joint at
-    # 0, so the drop turns actuation off: the creature falls limp in both
-    m.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_ACTUATION
+    # 0, so the drop turns actuation off: the creature falls limp in both.
+    # Held (cortex's muscles told to hold every hinge and cone at 0), the
+    # controls stay 0 and the servos hold the pose as the file has it.
+    if not held:
+        m.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_ACTUATION
     d = mujoco.MjData(m)
     mujoco.mj_forward(m, d)
     mass = m.body_mass[1:].sum()
@@ -336,6 +342,8 @@ def main():
             r["drives"] = drives(m, f)
             m2, _, _ = load(f["mjcf"])
             r["drop"] = mj_drop(f["mjcf"], f["seconds"])
+            if f.get("held"):
+                r["held"] = mj_drop(f["mjcf"], f["seconds"], held=True)
             if f.get("track"):
                 r["track"] = track(f["mjcf"], f["track"])
             if f.get("tab_limits"):
