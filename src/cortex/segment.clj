@@ -66,13 +66,17 @@
 
 (defn hull-from-points
   "A convex hull collision shape around `points` (Vector3fs), made under
-  the lock that keeps jBullet's hull building correct on many threads."
-  ^HullCollisionShape [points]
-  (let [coords (float-array (mapcat (fn [^Vector3f p] [(.x p) (.y p) (.z p)]) points))]
-    (util/locked-shape
-     ;; no collision margin, on either engine (see org/engine.org)
-     #(doto (HullCollisionShape. coords)
-        (.setMargin (float (engine/hull-margin)))))))
+  the lock that keeps jBullet's hull building correct on many threads,
+  with collision margin `margin` (the engine's hull margin unless
+  given)."
+  (^HullCollisionShape [points] (hull-from-points points (engine/hull-margin)))
+  (^HullCollisionShape [points margin]
+   (let [coords (float-array (mapcat (fn [^Vector3f p] [(.x p) (.y p) (.z p)]) points))]
+     (util/locked-shape
+      ;; no collision margin, on either engine (see org/engine.org), but
+      ;; a thin hull's (the shapes chapter, "Small and thin bodies")
+      #(doto (HullCollisionShape. coords)
+         (.setMargin (float margin)))))))
 
 (defn hull-points
   "The points of `geom`'s convex hull: its mesh at the geometry's world
@@ -290,7 +294,7 @@
   (let [{:keys [source centre moments]} inertia
         hull? (= :hull (:type shape))
         made (if hull?
-               (hull-from-points (map util/vec3 (:points shape)))
+               (hull-from-points (map util/vec3 (:points shape)) (shapes/margin shape))
                (shapes/collision-shape shape))
         at (util/vec3 position)
         turn (quaternion rotation)]

@@ -514,18 +514,28 @@
            (first shapes)
            :else {:type :compound :children (mapv child shapes)}))))))
 
+(defn- points-thickness
+  "The smallest extent of `points` ([[x y z] ...]) along an axis."
+  ^double [points]
+  (apply min (for [i (range 3) :let [xs (map #(double (nth % i)) points)]]
+               (- (double (apply max xs)) (double (apply min xs))))))
+
 (defn margin
   "The collision margin cortex gives `shape` (data) on the running
   engine, unless the data carries its own :margin: a hull the engine's
-  hull margin; a box or cylinder the smaller of that and a tenth of its
-  smallest half-extent (inside its outer size, on both engines); a
-  sphere or capsule its radius (Bullet's own rule); a compound none of
-  its own (0.0)."
+  hull margin, or half a percent of its thickness if that is less and
+  the hull is thinner than cortex.engine/thin; a box or cylinder the
+  smaller of the hull margin and a tenth of its smallest half-extent
+  (inside its outer size, on both engines); a sphere or capsule its
+  radius (Bullet's own rule); a compound none of its own (0.0)."
   ^double [shape]
   (double
    (or (:margin shape)
        (case (:type shape)
-         :hull (engine/hull-margin)
+         :hull (let [t (points-thickness (:points shape))]
+                 (if (< t (double engine/thin))
+                   (min (engine/hull-margin) (* 0.005 t))
+                   (engine/hull-margin)))
          (:box :cylinder) (min (engine/hull-margin) (* 0.1 (double (apply min (:half-extents shape)))))
          (:sphere :capsule) (:radius shape)
          :compound 0.0))))

@@ -185,10 +185,11 @@
 (defn- solver-of
   "How a simulation steps, {:iterations n :substeps k :projection bool}:
   what `solver` asked for, else the creature's Physics tab, else
-  cortex's defaults (cortex.engine/solver-iterations, 1, and true)."
-  [^PhysicsSpace space solver ^Node creature]
+  cortex's defaults (cortex.engine/solver-iterations, `thin-substeps`
+  (1 but for small bodies, see cortex.world/substeps-for), and true)."
+  [^PhysicsSpace space solver ^Node creature thin-substeps]
   {:iterations (.getSolverNumIterations space)
-   :substeps (long (or (:substeps solver) (:substeps (tab-settings creature)) 1))
+   :substeps (long (or (:substeps solver) (:substeps (tab-settings creature)) thin-substeps))
    :projection (projection/enabled? space)})
 
 (defonce ^:private sight (atom nil))
@@ -217,9 +218,11 @@
   what the creature's eyes see is observed too, drawn offscreen on a
   GL context of the simulation's own; see cortex.sight and the vision
   chapter), :solver ({:iterations n :substeps k :projection bool}, any
-  of them: overrides cortex's defaults of 20, 1 and true, or a
-  Physics-tab creature's file; see `check-solver!`). Any other key is an error. Use it from
-  one thread at a time; `destroy!` frees it."
+  of them: overrides cortex's defaults of 20, 1 (more for a creature
+  with a body under cortex.engine/thin thick: cortex.world/substeps-for)
+  and true, or a Physics-tab creature's file; see `check-solver!`). Any
+  other key is an error. Use it from one thread at a time; `destroy!`
+  frees it."
   ([creature] (simulation creature {}))
   ([^Node creature opts]
    (let [{:keys [gravity floor observe] :as opts}
@@ -238,27 +241,33 @@
      (doseq [^PhysicsRigidBody b (.getRigidBodyList space)]
        (.setGravity b g)
        (.activate b))
-     {:space space :creature creature :root root :observe (set observe)
-      :solver (solver-of space (:solver opts) creature)
-      :sensors sensors
-      :muscles (into {} (for [s sensors] [(:name s) (muscle/muscle s)]))
-      :segments (mapv (fn [[n ^Geometry g rb]]
-                        [n rb (segment/mass-offset g)])
-                      segs)
-      :controls (vec (for [^Geometry geom (body/segments root)
-                           :let [c (.getControl geom RigidBodyControl)]
-                           :when c]
-                       [geom c]))
-      :segment-names (identity-map (for [[n _ rb] segs] [rb n]))
-      :object-names (identity-map (for [[n _ rb] (when floor-geom (physical-segments root))
-                                        :when (= n "floor")]
-                                    [rb n]))
-      :steps (long-array 1)
-      :last-efforts (object-array 1)
-      ;; eyes (vision.org): loaded only when asked for, so that a
-      ;; simulation without eyes loads no OpenGL
-      :sight (when-let [eyes (:eyes opts)]
-               ((:open! (sight-hooks)) creature root eyes))})))
+     (let [tab (tab-settings creature)
+           ;; a creature with a small body takes more substeps, unless
+           ;; asked for a number (cortex.world/step-thin-bodies!)
+           thin-substeps (if (or (:substeps (:solver opts)) (:substeps tab))
+                           1
+                           (world/step-thin-bodies! space (double (:time-scale tab 1.0))))]
+       {:space space :creature creature :root root :observe (set observe)
+        :solver (solver-of space (:solver opts) creature thin-substeps)
+        :sensors sensors
+        :muscles (into {} (for [s sensors] [(:name s) (muscle/muscle s)]))
+        :segments (mapv (fn [[n ^Geometry g rb]]
+                          [n rb (segment/mass-offset g)])
+                        segs)
+        :controls (vec (for [^Geometry geom (body/segments root)
+                             :let [c (.getControl geom RigidBodyControl)]
+                             :when c]
+                         [geom c]))
+        :segment-names (identity-map (for [[n _ rb] segs] [rb n]))
+        :object-names (identity-map (for [[n _ rb] (when floor-geom (physical-segments root))
+                                          :when (= n "floor")]
+                                      [rb n]))
+        :steps (long-array 1)
+        :last-efforts (object-array 1)
+        ;; eyes (vision.org): loaded only when asked for, so that a
+        ;; simulation without eyes loads no OpenGL
+        :sight (when-let [eyes (:eyes opts)]
+                 ((:open! (sight-hooks)) creature root eyes))}))))
 
 (defn ^:api solver
   "How `sim` steps: {:iterations n :substeps k :projection bool}, the

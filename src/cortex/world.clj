@@ -99,6 +99,44 @@
         a
         (recur (Math/nextDown a))))))
 
+(def max-thin-substeps
+  "The most substeps a world takes for its thinnest body (a flat one
+  would ask for ever more)."
+  16)
+
+(defn substeps-for
+  "Bullet steps per 1/60 s for a world whose thinnest moving body is
+  `thickness` thick (nil: none): 1 down to cortex.engine/thin, below it
+  sqrt(thin / thickness) rounded up (but for a thousandth: thicknesses
+  are read from floats), at most `max-thin-substeps`."
+  ^long [thickness]
+  (if (and thickness (< (double thickness) (double engine/thin)))
+    (min max-thin-substeps
+         (long (Math/ceil (- (Math/sqrt (/ (double engine/thin) (max 1e-9 (double thickness))))
+                             0.001))))
+    1))
+
+(defn thinnest
+  "The smallest thickness (cortex.engine/thickness) of the moving bodies
+  in `space`, or nil."
+  [^PhysicsSpace space]
+  (let [ts (keep (fn [^PhysicsRigidBody b]
+                   (when (pos? (.getMass b)) (engine/thickness (.getCollisionShape b))))
+                 (.getRigidBodyList space))]
+    (when (seq ts) (apply min ts))))
+
+(defn step-thin-bodies!
+  "Give `space` the substeps its thinnest moving body needs
+  (`substeps-for`), when that is more than one, at time scale `t` (1 by
+  default); the number of substeps."
+  (^long [space] (step-thin-bodies! space 1.0))
+  (^long [^PhysicsSpace space t]
+   (let [k (substeps-for (thinnest space))]
+     (when (> k 1)
+       (.setAccuracy space (float (substep-length t k)))
+       (.setMaxSubSteps space (int k)))
+     k)))
+
 (defn world-settings
   "jME settings for a cortex world: a 800x600 window titled cortex, no
   settings dialog, no audio."
@@ -239,6 +277,8 @@
               (swap! state assoc ::physics physics-state)
               (.attachChild (.getRootNode this) root-node)
               (engine/add-all! (.getPhysicsSpace physics-state) (.getRootNode this))
+              ;; small bodies take more substeps (above)
+              (step-thin-bodies! (.getPhysicsSpace physics-state))
               (bind-keys! this key-map)
               (setup-fn this)))
           (update []

@@ -8,7 +8,9 @@
             [cortex.engine :as engine]
             [cortex.mass :as mass]
             [cortex.shapes :as shapes]
-            [cortex.util :as util])
+            [cortex.sim :as sim]
+            [cortex.util :as util]
+            [cortex.world :as world])
   (:import (com.jme3.bullet PhysicsSpace PhysicsSpace$BroadphaseType)
            (com.jme3.bullet.collision.shapes BoxCollisionShape CapsuleCollisionShape
                                              CollisionShape CompoundCollisionShape
@@ -16,7 +18,7 @@
                                              SphereCollisionShape)
            (com.jme3.bullet.objects PhysicsRigidBody)
            (com.jme3.math Quaternion Vector3f)
-           (com.jme3.scene Geometry)))
+           (com.jme3.scene Geometry Node VertexBuffer$Type)))
 
 (set! *warn-on-reflection* true)
 
@@ -274,12 +276,28 @@
         "a thin capsule's margin is its radius")
     (is (instance? HullCollisionShape hull))
     (is (close? (.getMargin ^CollisionShape hull) hull-margin 1e-9))
-    (is (instance? CompoundCollisionShape comp) "a primitive off the origin is a compound's child")))
+    (is (instance? CompoundCollisionShape comp) "a primitive off the origin is a compound's child")
+    ;; native Bullet's box is the hull of its corners drawn in by the margin
+    (is (close? (engine/thickness box) 0.2 0.003))
+    (is (close? (engine/thickness tiny) 0.002 0.0003))
+    (is (close? (engine/thickness cap) 0.004 1e-6) "a capsule's thickness is its diameter")
+    (is (close? (engine/thickness comp) 2.0 0.005) "a compound's is its thinnest child's")
+    (is (close? (shapes/margin {:type :hull :points [[0 0 0] [0.004 0 0] [0 0.002 0] [0 0 0.003]]})
+                (min hull-margin 1e-5) 1e-12)
+        "a hull under cortex.engine/thin thick: half a percent of its thickness")))
 
-(defn- drop-onto-floor
-  "Where the lowest vertex of `tris` is, as a fraction of their height,
-  after the segment of shape `shape` (data) is dropped unturned from 5% of
-  that height above a floor and left for 3 s."
+(deftest small-bodies-take-more-substeps
+  (is (= 1 (world/substeps-for nil) (world/substeps-for 1.0) (world/substeps-for 0.062)
+         (world/substeps-for engine/thin)))
+  (is (= 5 (world/substeps-for 0.002)) "sqrt(0.05 / 0.002), rounded up")
+  (is (= world/max-thin-substeps (world/substeps-for 0.0)) "a flat body asks for the most"))
+
+(defn- settle
+  "[where the lowest vertex of `tris` is, as a fraction of their height;
+  how far the segment turned, in degrees] after the segment of shape
+  `shape` (data) is dropped unturned from 5% of that height above a
+  floor and left for 3 s, in as many substeps as a simulation gives its
+  thickness (cortex.world/step-thin-bodies!)."
   [shape tris]
   (let [space (doto (PhysicsSpace. (Vector3f. -1000 -1000 -1000) (Vector3f. 1000 1000 1000)
                                    PhysicsSpace$BroadphaseType/DBVT)
@@ -294,12 +312,21 @@
     (.setPhysicsLocation body (Vector3f. 0 (float (+ (- low) (* 0.05 height))) 0))
     (.addCollisionObject space floor)
     (.addCollisionObject space body)
+    (world/step-thin-bodies! space)
     (dotimes [_ 180] (.update space (float (/ 1 60.0))))
     (let [p (.getPhysicsLocation body nil)
-          q (.getPhysicsRotation body nil)]
-      (/ (apply min (for [[x y z] (apply concat tris)]
-                      (.y (.add (.mult q (Vector3f. (float x) (float y) (float z))) p))))
-         height))))
+          q (.getPhysicsRotation body nil)
+          turn (Math/toDegrees (.toAngleAxis q (Vector3f.)))]
+      [(/ (apply min (for [[x y z] (apply concat tris)]
+                       (.y (.add (.mult q (Vector3f. (float x) (float y) (float z))) p))))
+          height)
+       (min turn (- 360.0 turn))])))
+
+(defn- drop-onto-floor
+  "Where the lowest vertex of `tris` is, as a fraction of their height,
+  after `settle`."
+  [shape tris]
+  (first (settle shape tris)))
 
 (deftest primitives-rest-where-their-mesh-says
   (let [f "test/fixtures/shapes/shapes.blend"
@@ -308,9 +335,60 @@
     (doseq [name ["box" "cylinder" "uv-sphere" "capsule-10" "shin"]]
       (is (< (Math/abs (double (rest f name))) 0.01) name))
     (let [r (rest f "cylinder-8")]
-      (is (< -0.01 r (+ 0.01 (/ (* 0.2 (- 1 (Math/cos (/ Math/PI 8)))) 0.4))) (str "cylinder-8 " r)))
-    (when (= :native engine/name)
-      (let [tiny "test/fixtures/shapes/shapes-0.01.blend"
-            t (shapes/triangles (segment tiny "box"))]
-        (is (< (Math/abs (double (rest tiny "box"))) 0.01))
-        (is (< 0.3 (drop-onto-floor (shapes/seed-hull t) t)) "the seed's hull stands on its margin")))))
+      (is (< -0.01 r (+ 0.01 (/ (* 0.2 (- 1 (Math/cos (/ Math/PI 8)))) 0.4))) (str "cylinder-8 " r)))))
+
+(deftest small-primitives-rest-where-their-mesh-says
+  (let [tiny "test/fixtures/shapes/shapes-0.01.blend"
+        tris (fn [name] (shapes/triangles (segment tiny name)))
+        ;; a capsule may lie down (it stands on a point); lying, its
+        ;; 10-sided mesh is inside it by r (1 - cos(pi/10)), 1.2% of its height
+        lying (/ (* 0.002 (- 1 (Math/cos (/ Math/PI 10)))) 0.008)]
+    (doseq [[label shape tris turn] [["box" (shapes/segment-shape (tris "box")) (tris "box") 2.0]
+                                     ["the seed's hull of the box" (shapes/seed-hull (tris "box")) (tris "box") 2.0]
+                                     ["cylinder" (shapes/segment-shape (tris "cylinder")) (tris "cylinder") 3.0]
+                                     ["shin" (shapes/segment-shape (tris "shin")) (tris "shin") nil]]]
+      (let [[r a] (settle shape tris)]
+        (is (< (Math/abs (double r)) 0.01) (str label " rests at " r " of its height"))
+        (when turn (is (< a turn) (str label " turned " a " degrees")))))
+    (let [t (tris "capsule-10")
+          [r] (settle (shapes/segment-shape t) t)]
+      (is (< -0.01 r (+ 0.01 lying)) (str "capsule " r)))))
+
+(defn- extent
+  "[lowest highest] y of any vertex of the segments under `node`, in the
+  world, its transforms brought up to date from `root`."
+  [^Node root ^Node node]
+  (.updateGeometricState root)
+  (let [ys (for [^Geometry g (body/segments node)
+                 :let [b (.getFloatBuffer (.getMesh g) VertexBuffer$Type/Position)]
+                 i (range (quot (.limit b) 3))]
+             (.y (.localToWorld g (Vector3f. (.get b (int (* 3 i))) (.get b (int (+ 1 (* 3 i))))
+                                             (.get b (int (+ 2 (* 3 i)))))
+                                nil)))]
+    [(double (apply min ys)) (double (apply max ys))]))
+
+(defn- creature-rest
+  "[where the four-legged creature's lowest point is after 3 s on a floor,
+  as a fraction of its height; its simulation's substeps], the creature
+  made at `scale` of its size by scaling its scene and dropped from 5% of
+  its height."
+  [scale]
+  (let [^Node c (util/load-blender-model "test/fixtures/designer/quadruped.blend")
+        _ (.setLocalScale c (float scale))
+        [lo hi] (extent c c)
+        height (- hi lo)
+        _ (.move c 0 (float (+ (- lo) (* 0.05 height))) 0)
+        _ (body/body! c)
+        s (sim/simulation c {:floor 0 :observe #{}})]
+    (try
+      (dotimes [_ 180] (sim/step! s))
+      (sim/sync! s)
+      [(/ (first (extent (:root s) c)) height) (:substeps (sim/solver s))]
+      (finally (sim/destroy! s)))))
+
+(deftest a-creature-made-at-a-hundredth-rests-on-the-floor
+  (let [[big] (creature-rest 1.0)
+        [small substeps] (creature-rest 0.01)]
+    (is (= 7 substeps) "sqrt(0.05 / 0.0012), rounded up")
+    (is (< (Math/abs (- (double small) (double big))) 0.02)
+        (str "at full size it rests at " big " of its height, at a hundredth at " small))))

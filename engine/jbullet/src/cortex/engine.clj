@@ -314,6 +314,26 @@
   ^double []
   0.0)
 
+(def thin
+  "The thickness below which a body is small, on either engine: 0.05,
+  under the thinnest segment of any pinned drop (a stranger's lower arm,
+  0.062). See the shapes chapter, \"Small and thin bodies\"."
+  0.05)
+
+(defn thickness
+  "The smallest extent of `shape` along its own axes (of a compound, its
+  thinnest child's), read by the shape's supporting points; nil for a
+  shape that is not convex."
+  [^CollisionShape shape]
+  (letfn [(t [^com.bulletphysics.collision.shapes.CollisionShape s]
+            (cond (instance? CompoundShape s)
+                  (reduce min ##Inf (map #(t (.childShape ^com.bulletphysics.collision.shapes.CompoundShapeChild %))
+                                         (.getChildList ^CompoundShape s)))
+                  (.isConvex s) (double (cortex.SmallConvexAlgorithm/thickness s))
+                  :else ##Inf))]
+    (let [d (double (t (.getCShape shape)))]
+      (when (< d ##Inf) d))))
+
 (defn atan2-fast
   "jBullet's ScalarUtil.atan2Fast, by which its hinge measures the angle
   its limits hold: exact at multiples of pi/4, monotonic."
@@ -525,10 +545,15 @@
 
 (defn configure-space!
   "Set `space` up as cortex simulates: jBullet's defaults but for
-  `solver-iterations`, and the limit rows of its joints (see
-  `limit-rows!`) added before each step."
+  `solver-iterations`, the limit rows of its joints (see `limit-rows!`)
+  added before each step, and two convex shapes of which one is thinner
+  than `thin` meeting through cortex.SmallConvexAlgorithm (see the
+  shapes chapter)."
   ^PhysicsSpace [^PhysicsSpace space]
   (.setSolverNumIterations space (int solver-iterations))
+  (cortex.SmallConvexAlgorithm/register
+   ^com.bulletphysics.collision.dispatch.CollisionDispatcher (.getDispatcher (.getDynamicsWorld space))
+   (float thin))
   (let [seen (java.util.IdentityHashMap.)
         placed (java.util.IdentityHashMap.)]
     (.addTickListener space (reify com.jme3.bullet.PhysicsTickListener

@@ -276,6 +276,46 @@
   ^double []
   0.001)
 
+(def thin
+  "The thickness below which a body is small, on either engine: 0.05,
+  under the thinnest segment of any pinned drop (a stranger's lower arm,
+  0.062). See the shapes chapter, \"Small and thin bodies\"."
+  0.05)
+
+(defn thickness
+  "The smallest extent of `shape` along its own axes (of a compound, its
+  thinnest child's): a hull's points', a box's or cylinder's, a sphere's
+  or capsule's diameter, a cone's smaller of diameter and height; nil
+  for any other shape. Read from the shape's own figures: Minie's
+  bounding box recalculates the shape's cached one, which moves the
+  pinned drops."
+  [^CollisionShape shape]
+  (letfn [(t [^CollisionShape s]
+            (condp instance? s
+              CompoundCollisionShape
+              (reduce min ##Inf (map #(t (.getShape ^ChildCollisionShape %))
+                                     (.listChildren ^CompoundCollisionShape s)))
+              HullCollisionShape
+              (let [ps (partition 3 (.copyHullVertices ^HullCollisionShape s))]
+                (apply min (for [i (range 3) :let [xs (map #(double (nth % i)) ps)]]
+                             (- (double (apply max xs)) (double (apply min xs))))))
+              com.jme3.bullet.collision.shapes.BoxCollisionShape
+              (let [e (.getHalfExtents ^com.jme3.bullet.collision.shapes.BoxCollisionShape s nil)]
+                (* 2.0 (min (.x e) (.y e) (.z e))))
+              com.jme3.bullet.collision.shapes.CylinderCollisionShape
+              (let [e (.getHalfExtents ^com.jme3.bullet.collision.shapes.CylinderCollisionShape s nil)]
+                (* 2.0 (min (.x e) (.y e) (.z e))))
+              com.jme3.bullet.collision.shapes.SphereCollisionShape
+              (* 2.0 (.getRadius ^com.jme3.bullet.collision.shapes.SphereCollisionShape s))
+              com.jme3.bullet.collision.shapes.CapsuleCollisionShape
+              (* 2.0 (.getRadius ^com.jme3.bullet.collision.shapes.CapsuleCollisionShape s))
+              com.jme3.bullet.collision.shapes.ConeCollisionShape
+              (let [c ^com.jme3.bullet.collision.shapes.ConeCollisionShape s]
+                (min (* 2.0 (.getRadius c)) (.getHeight c)))
+              ##Inf))]
+    (let [d (double (t shape))]
+      (when (< d ##Inf) d))))
+
 (defn hinge-limits
   "The [low high] to give a jME HingeJoint (made from two axes) so that
   the designer's limits [lo hi] (radians, right-hand rule about the

@@ -1,0 +1,277 @@
+// Generated from org/shapes.org by lein tangle: edit the chapter, not this file.
+package cortex;
+
+import com.bulletphysics.BulletGlobals;
+import com.bulletphysics.collision.broadphase.BroadphaseNativeType;
+import com.bulletphysics.collision.broadphase.CollisionAlgorithm;
+import com.bulletphysics.collision.broadphase.CollisionAlgorithmConstructionInfo;
+import com.bulletphysics.collision.broadphase.DispatcherInfo;
+import com.bulletphysics.collision.dispatch.CollisionAlgorithmCreateFunc;
+import com.bulletphysics.collision.dispatch.CollisionDispatcher;
+import com.bulletphysics.collision.dispatch.CollisionObject;
+import com.bulletphysics.collision.dispatch.ManifoldResult;
+import com.bulletphysics.collision.narrowphase.DiscreteCollisionDetectorInterface;
+import com.bulletphysics.collision.narrowphase.GjkEpaPenetrationDepthSolver;
+import com.bulletphysics.collision.narrowphase.GjkPairDetector;
+import com.bulletphysics.collision.narrowphase.PersistentManifold;
+import com.bulletphysics.collision.narrowphase.VoronoiSimplexSolver;
+import com.bulletphysics.collision.shapes.CollisionShape;
+import com.bulletphysics.collision.shapes.ConvexShape;
+import com.bulletphysics.linearmath.Transform;
+import com.bulletphysics.util.ObjectArrayList;
+import javax.vecmath.Vector3f;
+
+/**
+ * Two convex shapes, one of them thin, meet as they would if both were
+ * made `UNIT / thickness` times bigger: jBullet's GJK and EPA work to
+ * absolute tolerances meant for shapes about a unit in size (EPA to
+ * 0.001, GJK's degenerate cases below 0.01, contact points merged within
+ * 0.02), which at a hundredth of that size turn a box resting on a floor
+ * over on contact normals 45 degrees off. A shape with no margin of its
+ * own is given one inside its outer size (see `Scaled`). Pairs of
+ * thicker shapes keep jBullet's own algorithm. See org/shapes.org.
+ */
+public final class SmallConvexAlgorithm extends CollisionAlgorithm {
+    /** The thickness a pair's thinner shape is scaled to. */
+    public static final float UNIT = 1f;
+    /** The margin, at that size, of a shape that has none. */
+    public static final float MARGIN = 0.04f;
+    private final GjkPairDetector gjk = new GjkPairDetector();
+    private PersistentManifold manifold;
+    private boolean ownManifold;
+    private float scale;
+    private Scaled scaledA, scaledB;
+
+    /** The size of convex `shape` along each of its axes, read by its
+     * supporting points (a hull's cached box can be stale). */
+    static Vector3f extent(ConvexShape shape, Vector3f centre) {
+        Vector3f p = new Vector3f();
+        float[] h = new float[3], l = new float[3], c = new float[3];
+        for (int i = 0; i < 3; i++) {
+            float[] d = new float[3];
+            d[i] = 1f;
+            shape.localGetSupportingVertex(new Vector3f(d), p).get(c);
+            h[i] = c[i];
+            d[i] = -1f;
+            shape.localGetSupportingVertex(new Vector3f(d), p).get(c);
+            l[i] = c[i];
+        }
+        centre.set((h[0] + l[0]) / 2, (h[1] + l[1]) / 2, (h[2] + l[2]) / 2);
+        return new Vector3f(h[0] - l[0], h[1] - l[1], h[2] - l[2]);
+    }
+
+    /** The smallest extent of convex `shape` along its axes. */
+    public static float thickness(CollisionShape shape) {
+        Vector3f e = extent((ConvexShape) shape, new Vector3f());
+        return Math.min(e.x, Math.min(e.y, e.z));
+    }
+
+    /** Have every pair of convex shapes in `dispatcher` meet through
+     * this algorithm when one of them is thinner than `size`, and
+     * through the one jBullet gives them otherwise (two spheres keep
+     * their own exact one). */
+    public static void register(CollisionDispatcher dispatcher, float size) {
+        BroadphaseNativeType[] types = BroadphaseNativeType.values();
+        for (BroadphaseNativeType a : types) {
+            for (BroadphaseNativeType b : types) {
+                if (a.isConvex() && b.isConvex() && !(a == b && a == BroadphaseNativeType.SPHERE_SHAPE_PROXYTYPE)) {
+                    CollisionAlgorithmCreateFunc own = dispatcher.getCollisionConfiguration().getCollisionAlgorithmCreateFunc(a, b);
+                    dispatcher.registerCollisionCreateFunc(a.ordinal(), b.ordinal(), new CreateFunc(own, size));
+                }
+            }
+        }
+    }
+
+    static final class CreateFunc extends CollisionAlgorithmCreateFunc {
+        final CollisionAlgorithmCreateFunc own;
+        final float size;
+        CreateFunc(CollisionAlgorithmCreateFunc own, float size) {
+            this.own = own;
+            this.size = size;
+        }
+
+        @Override
+        public CollisionAlgorithm createCollisionAlgorithm(CollisionAlgorithmConstructionInfo ci,
+                                                           CollisionObject a, CollisionObject b) {
+            float t = Math.min(thickness(a.getCollisionShape()), thickness(b.getCollisionShape()));
+            if (!(t < size)) {
+                return own.createCollisionAlgorithm(ci, a, b);
+            }
+            SmallConvexAlgorithm algo = new SmallConvexAlgorithm();
+            algo.init(ci);
+            algo.scale = UNIT / Math.max(t, 1e-6f);
+            algo.manifold = ci.manifold;
+            if (algo.manifold == null && ci.dispatcher1.needsCollision(a, b)) {
+                algo.manifold = ci.dispatcher1.getNewManifold(a, b);
+                algo.ownManifold = true;
+            }
+            algo.gjk.init(null, null, new VoronoiSimplexSolver(), new GjkEpaPenetrationDepthSolver());
+            algo.internalSetCreateFunc(this);
+            return algo;
+        }
+
+        @Override
+        public void releaseCollisionAlgorithm(CollisionAlgorithm algo) {
+        }
+    }
+
+    @Override
+    public void destroy() {
+        if (ownManifold && manifold != null) {
+            dispatcher.releaseManifold(manifold);
+        }
+        manifold = null;
+        ownManifold = false;
+    }
+
+    @Override
+    public float calculateTimeOfImpact(CollisionObject a, CollisionObject b, DispatcherInfo info,
+                                       ManifoldResult out) {
+        return 1f;
+    }
+
+    @Override
+    public void getAllContactManifolds(ObjectArrayList<PersistentManifold> out) {
+        if (manifold != null && ownManifold) {
+            out.add(manifold);
+        }
+    }
+
+    @Override
+    public void processCollision(CollisionObject a, CollisionObject b, DispatcherInfo info, ManifoldResult out) {
+        if (manifold == null) {
+            return;
+        }
+        out.setPersistentManifold(manifold);
+        final float k = scale;
+        if (scaledA == null || scaledA.shape != a.getCollisionShape()) {
+            scaledA = new Scaled((ConvexShape) a.getCollisionShape(), k);
+        }
+        if (scaledB == null || scaledB.shape != b.getCollisionShape()) {
+            scaledB = new Scaled((ConvexShape) b.getCollisionShape(), k);
+        }
+        Scaled sa = scaledA, sb = scaledB;
+        float saved = BulletGlobals.getContactBreakingThreshold();
+        // the manifold keeps and merges points within the threshold the
+        // pair would have at the bigger size (jBullet's is thread-local)
+        BulletGlobals.setContactBreakingThreshold(saved / k);
+        try {
+            DiscreteCollisionDetectorInterface.ClosestPointInput in =
+                new DiscreteCollisionDetectorInterface.ClosestPointInput();
+            in.init();
+            a.getWorldTransform(in.transformA);
+            b.getWorldTransform(in.transformB);
+            final Vector3f origin = new Vector3f(in.transformA.origin);
+            in.transformA.origin.sub(origin);
+            in.transformA.origin.scale(k);
+            in.transformB.origin.sub(origin);
+            in.transformB.origin.scale(k);
+            float d = sa.getMargin() + sb.getMargin() + saved;
+            in.maximumDistanceSquared = d * d;
+            gjk.setMinkowskiA(sa);
+            gjk.setMinkowskiB(sb);
+            gjk.getClosestPoints(in, new DiscreteCollisionDetectorInterface.Result() {
+                    @Override
+                    public void setShapeIdentifiers(int p0, int i0, int p1, int i1) {
+                    }
+
+                    @Override
+                    public void addContactPoint(Vector3f normal, Vector3f point, float depth) {
+                        Vector3f p = new Vector3f(point);
+                        p.scale(1f / k);
+                        p.add(origin);
+                        out.addContactPoint(normal, p, depth / k);
+                    }
+                }, null);
+            if (ownManifold) {
+                out.refreshContactPoints();
+            }
+        } finally {
+            BulletGlobals.setContactBreakingThreshold(saved);
+        }
+    }
+
+    /** `shape` made `k` times bigger, as GJK and EPA read it; a shape
+     * with no margin of its own is drawn in by `MARGIN` (at the bigger
+     * size) along each axis of its box and given that margin back round
+     * it, so that two such shapes at rest are apart by their margins
+     * (GJK's case) rather than touching (EPA's). */
+    static final class Scaled extends ConvexShape {
+        final ConvexShape shape;
+        final float k, margin;
+        final boolean drawn;
+        final Vector3f centre = new Vector3f(), shrink = new Vector3f(1f, 1f, 1f);
+        Scaled(ConvexShape shape, float k) {
+            this.shape = shape;
+            this.k = k;
+            BroadphaseNativeType type = shape.getShapeType();
+            boolean round = type == BroadphaseNativeType.SPHERE_SHAPE_PROXYTYPE
+                || type == BroadphaseNativeType.CAPSULE_SHAPE_PROXYTYPE;
+            drawn = !(round || shape.getMargin() * k >= MARGIN);
+            if (!drawn) {
+                margin = shape.getMargin() * k;
+            } else {
+                Vector3f hi = extent(shape, centre);
+                float m = MARGIN / k;
+                shrink.set(1f - 2f * m / hi.x, 1f - 2f * m / hi.y, 1f - 2f * m / hi.z);
+                margin = MARGIN;
+            }
+        }
+
+        private Vector3f core(Vector3f dir, Vector3f out) {
+            if (!drawn) {
+                shape.localGetSupportingVertexWithoutMargin(dir, out);
+            } else {
+                Vector3f d = new Vector3f(dir.x * shrink.x, dir.y * shrink.y, dir.z * shrink.z);
+                shape.localGetSupportingVertex(d, out);
+                out.sub(centre);
+                out.set(out.x * shrink.x, out.y * shrink.y, out.z * shrink.z);
+                out.add(centre);
+            }
+            out.scale(k);
+            return out;
+        }
+
+        @Override
+        public Vector3f localGetSupportingVertexWithoutMargin(Vector3f dir, Vector3f out) {
+            return core(dir, out);
+        }
+
+        @Override
+        public Vector3f localGetSupportingVertex(Vector3f dir, Vector3f out) {
+            core(dir, out);
+            float l = dir.length();
+            if (l > 0f) {
+                out.scaleAdd(margin / l, dir, out);
+            }
+            return out;
+        }
+
+        @Override
+        public void batchedUnitVectorGetSupportingVertexWithoutMargin(Vector3f[] dirs, Vector3f[] outs, int n) {
+            for (int i = 0; i < n; i++) {
+                core(dirs[i], outs[i]);
+            }
+        }
+
+        @Override
+        public void getAabb(Transform t, Vector3f lo, Vector3f hi) {
+            Transform u = new Transform(t);
+            u.origin.scale(1f / k);
+            shape.getAabb(u, lo, hi);
+            lo.scale(k);
+            hi.scale(k);
+        }
+
+        @Override public void getAabbSlow(Transform t, Vector3f lo, Vector3f hi) { getAabb(t, lo, hi); }
+        @Override public float getMargin() { return margin; }
+        @Override public void setMargin(float m) { throw new UnsupportedOperationException(); }
+        @Override public void setLocalScaling(Vector3f s) { throw new UnsupportedOperationException(); }
+        @Override public Vector3f getLocalScaling(Vector3f out) { return shape.getLocalScaling(out); }
+        @Override public int getNumPreferredPenetrationDirections() { return 0; }
+        @Override public void getPreferredPenetrationDirection(int i, Vector3f out) { throw new UnsupportedOperationException(); }
+        @Override public BroadphaseNativeType getShapeType() { return shape.getShapeType(); }
+        @Override public void calculateLocalInertia(float mass, Vector3f out) { throw new UnsupportedOperationException(); }
+        @Override public String getName() { return "Scaled " + shape.getName(); }
+    }
+}
