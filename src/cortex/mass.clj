@@ -17,28 +17,52 @@
 (defn- cross [[a b c] [x y z]]
   [(- (* b z) (* c y)) (- (* c x) (* a z)) (- (* a y) (* b x))])
 
-(defn- outer [[a b c :as u]] (mapv #(mapv (fn [x] (* % x)) u) [a b c]))
+(defn- outer [[a b c]]
+  [[(* a a) (* a b) (* a c)] [(* b a) (* b b) (* b c)] [(* c a) (* c b) (* c c)]])
 
-(defn- m+ [& ms] (apply mapv (fn [& rows] (apply mapv + rows)) ms))
+(defn- m+ [[[a b c] [d e f] [g h i]] [[p q r] [s t u] [v w x]]]
+  [[(+ a p) (+ b q) (+ c r)] [(+ d s) (+ e t) (+ f u)] [(+ g v) (+ h w) (+ i x)]])
 
-(defn- m* [k m] (mapv (fn [row] (mapv #(* k %) row)) m))
+(defn- m* [k m] (mapv (fn [[x y z]] [(* k x) (* k y) (* k z)]) m))
 
 (defn- trace [m] (+ (get-in m [0 0]) (get-in m [1 1]) (get-in m [2 2])))
 
 (def ^:private identity3 [[1.0 0.0 0.0] [0.0 1.0 0.0] [0.0 0.0 1.0]])
 
+(defn- add!
+  "Add `x` to element `i` of `acc`."
+  [^doubles acc ^long i ^double x]
+  (aset acc i (+ (aget acc i) x)))
+
 (defn- moments
   "[volume first-moment second-moment] of the solid the `triangles`
-  ([a b c] each) enclose, signed by their orientation."
+  ([a b c] each) enclose, signed by their orientation. The sums above,
+  in primitive doubles, each term added in the order the formulas
+  write it; the second moment is symmetric, so six of its nine
+  entries are summed."
   [triangles]
-  (reduce (fn [[vol first second] [a b c]]
-            (let [v (/ (dot a (cross b c)) 6.0)
-                  s (mapv + a b c)]
-              [(+ vol v)
-               (mapv + first (mapv #(* (/ v 4.0) %) s))
-               (m+ second (m* (/ v 20.0) (m+ (outer a) (outer b) (outer c) (outer s))))]))
-          [0.0 [0.0 0.0 0.0] [[0.0 0.0 0.0] [0.0 0.0 0.0] [0.0 0.0 0.0]]]
-          triangles))
+  (let [acc (double-array 10)] ; volume, first x y z, second xx xy xz yy yz zz
+    (doseq [[[ax ay az] [bx by bz] [cx cy cz]] triangles]
+      (let [ax (double ax) ay (double ay) az (double az)
+            bx (double bx) by (double by) bz (double bz)
+            cx (double cx) cy (double cy) cz (double cz)
+            v (/ (+ (* ax (- (* by cz) (* bz cy)))
+                    (* ay (- (* bz cx) (* bx cz)))
+                    (* az (- (* bx cy) (* by cx))))
+                 6.0)
+            sx (+ ax bx cx) sy (+ ay by cy) sz (+ az bz cz)
+            f (/ v 4.0)
+            q (/ v 20.0)]
+        (add! acc 0 v)
+        (add! acc 1 (* f sx)) (add! acc 2 (* f sy)) (add! acc 3 (* f sz))
+        (add! acc 4 (* q (+ (* ax ax) (* bx bx) (* cx cx) (* sx sx))))
+        (add! acc 5 (* q (+ (* ax ay) (* bx by) (* cx cy) (* sx sy))))
+        (add! acc 6 (* q (+ (* ax az) (* bx bz) (* cx cz) (* sx sz))))
+        (add! acc 7 (* q (+ (* ay ay) (* by by) (* cy cy) (* sy sy))))
+        (add! acc 8 (* q (+ (* ay az) (* by bz) (* cy cz) (* sy sz))))
+        (add! acc 9 (* q (+ (* az az) (* bz bz) (* cz cz) (* sz sz))))))
+    (let [[v x y z xx xy xz yy yz zz] (vec acc)]
+      [v [x y z] [[xx xy xz] [xy yy yz] [xz yz zz]]])))
 
 (defn mesh-properties
   "The mass properties of the closed mesh `triangles` ([a b c] each, a

@@ -49,22 +49,36 @@
   for every joint instead of being put in the grid."
   64)
 
+(defn- cell-of
+  "The number of the cell that coordinate `x` falls in along its axis."
+  ^long [^double cell x]
+  (long (Math/floor (/ (double x) cell))))
+
 (defn- cell-range
-  "The grid cells, as [i j k], that the box from `lo` to `hi` covers."
+  "The grid cells, as [i j k], that the box from `lo` to `hi` covers:
+  a vector, made with no lazy sequence (a joint's search asks for a few
+  hundred of these)."
   [cell lo hi]
-  (let [[[i0 j0 k0] [i1 j1 k1]] (for [corner [lo hi]]
-                                  (map #(long (Math/floor (/ (double %) cell))) corner))]
-    (for [i (range i0 (inc i1)) j (range j0 (inc j1)) k (range k0 (inc k1))]
-      [i j k])))
+  (let [cell (double cell)
+        [i0 j0 k0] (mapv #(cell-of cell %) lo)
+        [i1 j1 k1] (mapv #(cell-of cell %) hi)
+        up (fn [from to f out] (reduce f out (range from (inc (long to)))))]
+    (persistent!
+     (up i0 i1 (fn [out i]
+                 (up j0 j1 (fn [out j]
+                             (up k0 k1 (fn [out k] (conj! out [i j k])) out))
+                     out))
+         (transient [])))))
 
 (defn- cell-count
   "How many cells the box from `lo` to `hi` covers, counted in doubles:
   a box far out or huge (a damaged file's) covers more than a long
   holds."
-  ^double [cell lo hi]
-  (reduce * 1.0 (map #(inc (- (Math/floor (/ (double %2) cell))
-                              (Math/floor (/ (double %1) cell))))
-                     lo hi)))
+  ^double [cell [lx ly lz] [hx hy hz]]
+  (let [cell (double cell)
+        across (fn ^double [l h] (inc (- (Math/floor (/ (double h) cell))
+                                         (Math/floor (/ (double l) cell)))))]
+    (* (* (* 1.0 (across lx hx)) (across ly hy)) (across lz hz))))
 
 (defn- gridded?
   "Whether the box from `lo` to `hi` goes in the grid: it covers at most
@@ -90,10 +104,12 @@
         {big false small true} (group-by #(let [{:keys [lo hi]} (items %)]
                                             (gridded? cell lo hi max-cells-per-segment))
                                          (range (count items)))
-        grid (reduce (fn [grid i]
-                       (let [{:keys [lo hi]} (items i)]
-                         (reduce #(update %1 %2 (fnil conj []) i) grid (cell-range cell lo hi))))
-                     {} small)]
+        grid (persistent!
+              (reduce (fn [grid i]
+                        (let [{:keys [lo hi]} (items i)]
+                          (reduce #(assoc! %1 %2 (conj (get %1 %2 []) i))
+                                  grid (cell-range cell lo hi))))
+                      (transient {}) small))]
     {:items items :cell cell :grid grid :big (vec big)
      :lo (if (seq items) (apply map min (map :lo items)) [0 0 0])
      :hi (if (seq items) (apply map max (map :hi items)) [0 0 0])}))
@@ -104,16 +120,20 @@
   (index-of (filter physical? (segments parts))))
 
 (defn- overlaps?
-  [lo hi lo' hi']
-  (every? true? (map #(and (<= %1 %4) (<= %3 %2)) lo hi lo' hi')))
+  [[l0 l1 l2] [h0 h1 h2] [m0 m1 m2] [n0 n1 n2]]
+  (and (<= l0 n0) (<= m0 h0) (<= l1 n1) (<= m1 h1) (<= l2 n2) (<= m2 h2)))
 
 (defn- nearby
   "The items of `index` whose bounds meet the box from `lo` to `hi`."
   [{:keys [items cell grid big]} lo hi]
   (let [candidates (if-not (gridded? cell lo hi (count items))
                      (range (count items))
-                     (distinct (concat (mapcat grid (cell-range cell lo hi)) big)))]
-    (for [i (sort candidates)
+                     ;; each once, in order: a set sorted as it is filled
+                     (let [in (java.util.TreeSet. ^java.util.Collection big)]
+                       (doseq [c (cell-range cell lo hi)]
+                         (when-let [is (grid c)] (.addAll in ^java.util.Collection is)))
+                       in))]
+    (for [i candidates
           :let [item (items i)]
           :when (overlaps? lo hi (:lo item) (:hi item))]
       item)))
@@ -124,7 +144,7 @@
   [index ^Vector3f center radius]
   (let [c [(.x center) (.y center) (.z center)]
         cube (BoundingBox. center (float radius) (float radius) (float radius))]
-    (for [{:keys [^Geometry geom]} (nearby index (map #(- % radius) c) (map #(+ % radius) c))
+    (for [{:keys [^Geometry geom]} (nearby index (mapv #(- % radius) c) (mapv #(+ % radius) c))
           :when (pos? (.collideWith geom cube (CollisionResults.)))]
       geom)))
 

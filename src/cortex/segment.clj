@@ -197,6 +197,12 @@
   (let [[[a b c] [d e f] [g h i]] axes]
     (.fromRotationMatrix (Quaternion.) (Matrix3f. a b c d e f g h i))))
 
+(defn- largest-coordinate
+  "The largest size of a coordinate of `triangles`, at least 1e-9."
+  ^double [triangles]
+  (let [bigger (fn [m x] (Math/max (double m) (Math/abs (double x))))]
+    (reduce (fn [m t] (reduce #(reduce bigger %1 %2) m t)) 1e-9 triangles)))
+
 (defn inertia-plan
   "How `geom` is to be massed: {:source :mesh :centre c :moments m
   :rotation q (or nil when the body is the segment's own frame)}, or
@@ -205,7 +211,7 @@
   ([geom mass] (inertia-plan geom mass (mesh-triangles geom)))
   ([^Geometry geom mass triangles]
     (if-let [{:keys [centre inertia]} (mass/mesh-properties triangles mass)]
-      (let [size (apply max 1e-9 (map #(Math/abs (double %)) (flatten triangles)))
+      (let [size (largest-coordinate triangles)
             off-diagonal (max (Math/abs (double (get-in inertia [0 1])))
                               (Math/abs (double (get-in inertia [0 2])))
                               (Math/abs (double (get-in inertia [1 2]))))

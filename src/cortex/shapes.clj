@@ -48,12 +48,12 @@
   "The points of `points`, rounded to floats (as doubles), without
   repeats by `float-key`, in order of first appearance."
   [points]
-  (loop [ps (seq points) seen #{} out []]
-    (if-let [[p & more] ps]
-      (let [p (mapv #(double (float %)) p)
-            k (float-key p)]
-        (if (seen k) (recur more seen out) (recur more (conj seen k) (conj out p))))
-      out)))
+  (let [seen (java.util.HashSet.)]
+    (persistent!
+     (reduce (fn [out [x y z]]
+               (let [p [(double (float x)) (double (float y)) (double (float z))]]
+                 (if (.add seen (float-key p)) (conj! out p) out)))
+             (transient []) points))))
 
 (defn triangles
   "The triangles of `geom`'s mesh at its world scale, in its own axes,
@@ -71,13 +71,16 @@
                          [(* (.x scale) (.get positions (* 3 i)))
                           (* (.y scale) (.get positions (+ 1 (* 3 i))))
                           (* (.z scale) (.get positions (+ 2 (* 3 i))))]))
-        corners (if index
-                  (map #(.get index (int %)) (range (.size index)))
-                  (range n-vertices))
+        ;; each vertex made once, and shared by the triangles that use it
+        vertices (mapv vertex (range n-vertices))
+        corner (if index #(vertices (.get index (int %))) vertices)
+        n-corners (if index (.size index) n-vertices)
         tris (if (and positions (= Mesh$Mode/Triangles (.getMode mesh)))
-               (mapv #(mapv vertex %) (partition 3 corners))
+               (mapv (fn [t] (let [k (* 3 (long t))]
+                               [(corner k) (corner (+ k 1)) (corner (+ k 2))]))
+                     (range (quot n-corners 3)))
                [])]
-    (with-meta tris {:points (distinct-floats (map vertex (range n-vertices)))})))
+    (with-meta tris {:points (distinct-floats vertices)})))
 
 (defn- position-key [[x y z]] [(+ 0.0 (double x)) (+ 0.0 (double y)) (+ 0.0 (double z))])
 

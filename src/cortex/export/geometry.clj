@@ -8,7 +8,15 @@
 
 (set! *warn-on-reflection* true)
 
-(defn dot ^double [a b] (reduce + (map #(* (double %1) (double %2)) a b)))
+(defn dot
+  "The products of `a` and `b` summed left to right; for two vectors of
+  three, the common case, with no sequence made (a creature's muscles
+  take some thirty of these a joint)."
+  ^double [a b]
+  (if (and (vector? a) (vector? b) (== 3 (count a)) (== 3 (count b)))
+    (+ (+ (* (double (a 0)) (double (b 0))) (* (double (a 1)) (double (b 1))))
+       (* (double (a 2)) (double (b 2))))
+    (reduce + (map #(* (double %1) (double %2)) a b))))
 (defn v- [a b] (mapv #(- (double %1) (double %2)) a b))
 (defn v+ [a b] (mapv #(+ (double %1) (double %2)) a b))
 (defn v* [k v] (mapv #(* (double k) (double %)) v))
