@@ -528,6 +528,20 @@
   (format "%s: centre of mass %.3f m up after 1 s, %.3f m at the end, fastest segment then %.3f m/s"
           who (double (nth heights 59)) (double (peek (vec heights))) (double rest-speed)))
 
+
+(defn- check-held
+  "Fixture `f`'s held drop: cortex's centre of mass where MuJoCo's is,
+  within 5% of size `sz`, after 1 s and at the end."
+  [f sz cortex-held mj-held]
+  (testing "held"
+    (println (str f ", held: " (drop-figures "MuJoCo" (mj-held "heights") (mj-held "rest_speed"))
+                  "; " (drop-figures "cortex" (:heights cortex-held) (:rest-speed cortex-held))))
+    (doseq [[label i] [["after 1 s" 59] ["at the end" (dec (count (mj-held "heights")))]]]
+      (is (< (Math/abs (- (double (nth (mj-held "heights") i)) (nth (:heights cortex-held) i)))
+             (* 0.05 sz))
+          (str label ": centre of mass " (nth (mj-held "heights") i) " m up, cortex's "
+               (nth (:heights cortex-held) i) ", size " sz)))))
+
 (defn- check-fixture
   [f plan cortex cortex-held {:strs [mujoco bodies drives drop urdf] mj-held "held"}]
   (testing f
@@ -567,14 +581,7 @@
             (is (< rest_speed 0.1) (str "still moving at " rest_speed " m/s")))))
       (when (settles-alike f)
         (is (< (:rest-speed cortex) 0.1) (str "cortex still moving at " (:rest-speed cortex))))
-      (testing "held"
-        (println (str f ", held: " (drop-figures "MuJoCo" (mj-held "heights") (mj-held "rest_speed"))
-                      "; " (drop-figures "cortex" (:heights cortex-held) (:rest-speed cortex-held))))
-        (doseq [[label i] [["after 1 s" 59] ["at the end" (dec (count (mj-held "heights")))]]]
-          (is (< (Math/abs (- (double (nth (mj-held "heights") i)) (nth (:heights cortex-held) i)))
-                 (* 0.05 sz))
-              (str label ": centre of mass " (nth (mj-held "heights") i) " m up, cortex's "
-                   (nth (:heights cortex-held) i) ", size " sz))))
+      (check-held f sz cortex-held mj-held)
       (is (zero? (get-in urdf ["check_urdf" "code"] 0)) (get-in urdf ["check_urdf" "output"]))
       (doseq [{:keys [id mass]} (:segments plan)]
         (is (close? (get-in urdf ["masses" id]) mass 1e-6) id)))))

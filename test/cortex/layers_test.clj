@@ -138,6 +138,7 @@
   "[test namespace, namespace of a later chapter] a test may require,
   and why."
   {["cortex.shapes-test" "cortex.body"] "shapes are checked on whole bodies, built by body!"
+   ["cortex.shapes-test" "cortex.sim"] "small bodies rest, and take more substeps, in a simulation"
    ["cortex.body-test" "cortex.body"] "the seed's functions, tested where the seed's chapter explains them"
    ["cortex.designer-test" "cortex.body"] "designers' creatures, built by body!"
    ["cortex.designer-test" "cortex.drops"] "designers' creatures, dropped to rest"

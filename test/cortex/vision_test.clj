@@ -8,6 +8,10 @@
             [cortex.body :as body]
             [cortex.render :as render]
             [cortex.sense :as sense]
+            ;; the eyes' renderer, which cortex.sim does not load itself:
+            ;; the tests that step a simulation with eyes need it loaded
+            ;; when this namespace runs alone
+            [cortex.sight]
             [cortex.sim :as sim]
             [cortex.util :as util]
             [cortex.vision :as vision])
