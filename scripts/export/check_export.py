@@ -17,7 +17,10 @@ engine's axes), "dofs": [{"joint" (MuJoCo joint), "actuator", "range"}]}],
 "height"} or null, "tab_limits": [{"name", "type" ("GENERIC"
 or "HINGE"), "segments": [a, b], "frame" (3x3 rows, Z-up world: the
 constraint's frame, columns its X, Y, Z), "limits": [[lo, hi] or null] x 3
-(Bullet's angles)}] or absent, "track": [seconds, ...] or absent}]}.
+(Bullet's angles)}] or absent, "loops": [{"name", "segments": [a, b],
+"points": [[x, y, z], ...] (Z-up world: where the two bodies are held
+together), "weld": true or false}] or absent, "track": [seconds, ...] or
+absent}]}.
 
 OUT.json, by fixture name:
 - "mujoco": {"error": text or null, "warnings": [text]}.
@@ -50,6 +53,13 @@ OUT.json, by fixture name:
   ({constraint: [x, y, z]}, radians, 0 within), read from the bodies as
   Bullet reads them: a 6-DOF joint's Euler angles of the inverse relative
   turn of its frames (m^-1 = Rx Ry Rz), a hinge's -(turn of b about Z).
+- "loops" (a Physics-tab creature's loops): the drop again, and over all of
+  it how far each closing constraint lets its two bodies part: {constraint:
+  {"apart": metres, the largest distance between the two bodies' points
+  that started at one of its "points", "turn": radians, for a weld the
+  largest angle of the two bodies' relative rotation since the start,
+  "apart_after_1s", "turn_after_1s": the same over the drop's last
+  "seconds" - 1 s}}.
 - "track": where each body is (its frame's origin, world) at each of
   "track"'s times, {seconds: {body: [x, y, z]}}, simulated with gravity,
   no floor and actuation off.
@@ -232,6 +242,46 @@ def tab_limits(path, fixture):
     return worst
 
 
+def loops(path, fixture):
+    """How far each loop's two bodies part in MuJoCo, dropped onto the
+    floor (see the docstring)."""
+    floored = add_floor(path, 0)
+    m, err, _ = load(floored)
+    os.remove(floored)
+    if m is None:
+        return {"error": err}
+    m.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_ACTUATION
+    d = mujoco.MjData(m)
+    mujoco.mj_forward(m, d)
+    x0 = d.xmat.copy()
+    held = []
+    for c in fixture["loops"]:
+        ia, ib = (m.body(s).id for s in c["segments"])
+        # each point in each body's own frame, where the file placed them
+        local = [(d.xmat[i].reshape(3, 3).T @ (np.asarray(p, float) - d.xpos[i]))
+                 for p in c["points"] for i in (ia, ib)]
+        held.append((c, ia, ib, local))
+    worst = {c["name"]: {"apart": 0.0, "turn": 0.0, "apart_after_1s": 0.0, "turn_after_1s": 0.0}
+             for c in fixture["loops"]}
+    settle = int(round(1.0 / m.opt.timestep))
+    for i in range(int(round(fixture["seconds"] / m.opt.timestep))):
+        mujoco.mj_step(m, d)
+        for c, ia, ib, local in held:
+            w = worst[c["name"]]
+            ra, rb = d.xmat[ia].reshape(3, 3), d.xmat[ib].reshape(3, 3)
+            apart = max(float(np.linalg.norm(d.xpos[ia] + ra @ pa - d.xpos[ib] - rb @ pb))
+                        for pa, pb in zip(local[0::2], local[1::2]))
+            turn = 0.0
+            if c["weld"]:
+                r = relative(m, d, x0, c["segments"][0], c["segments"][1])
+                turn = math.acos(max(-1.0, min(1.0, (np.trace(r) - 1) / 2)))
+            for k, v in (("apart", apart), ("turn", turn)):
+                w[k] = max(w[k], v)
+                if i >= settle:
+                    w[k + "_after_1s"] = max(w[k + "_after_1s"], v)
+    return worst
+
+
 def track(path, times):
     """Each body's position at each of `times` (see the docstring)."""
     m, err, _ = load(path)
@@ -348,6 +398,8 @@ def main():
                 r["track"] = track(f["mjcf"], f["track"])
             if f.get("tab_limits"):
                 r["tab_limits"] = tab_limits(f["mjcf"], f)
+            if f.get("loops"):
+                r["loops"] = loops(f["mjcf"], f)
             if f.get("camera"):
                 r["render"] = render(m2, f["camera"])
         if f.get("urdf"):

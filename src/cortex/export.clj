@@ -298,8 +298,9 @@
       (for [[{:keys [name]} why] skipped]
         (str "constraint " name " is left out: " why))
       [:compiler {:angle "radian" :inertiafromgeom "false" :autolimits "true"}]
-      ;; limits as hard as MuJoCo holds steadily (see the text)
-      [:default [:joint {:solreflimit [(* 2 step) 1.0] :solimplimit [0.99 0.999 0.001]}]]
+      ;; limits and loops as hard as MuJoCo holds steadily (see the text)
+      [:default [:joint {:solreflimit [(* 2 step) 1.0] :solimplimit [0.99 0.999 0.001]}]
+       [:equality {:solref [(* 2 step) 1.0] :solimp [0.99 0.999 0.001]}]]
       [:option {:timestep step
                 :gravity (z-up (or (:gravity world) [0.0 -9.81 0.0]))
                 :integrator "implicitfast" :solver "Newton" :cone "pyramidal"}

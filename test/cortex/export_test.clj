@@ -165,7 +165,9 @@
   "The Physics-tab creatures exported and checked, by name."
   {"ragdoll" "test/fixtures/physics-sim/ragdoll.blend"
    "rig-chain" "test/fixtures/physics-sim/rig-chain.blend"
-   "kick" "test/fixtures/physics-sim/kick.blend"})
+   "kick" "test/fixtures/physics-sim/kick.blend"
+   "four-bar" "test/fixtures/loops/four-bar.blend"
+   "welded-ring" "test/fixtures/loops/welded-ring.blend"})
 
 (defn- tab-plan [f] (plan/plan (physics-tab/load-creature (tab-fixtures f))))
 
@@ -264,7 +266,18 @@
     (is (str/includes? doc "constraint ring closes a loop: a connect at its pivot, its angular limits lost"))
     (is (re-find #"rigid body constraint \"ring\" closes a loop.*a URDF robot is a tree"
                  (str (refusal #(ex/urdf p)))))
-    (is (= 15 (count (joint-attrs doc))) "the five others, three hinges each"))
+    (is (= 15 (count (joint-attrs doc))) "the five others, three hinges each")
+    (is (re-find #"<equality solref=\"0.00833\d* 1.0\" solimp=\"0.99 0.999 0.001\"/>" doc)
+        "loops as hard as limits"))
+  (let [weld (ex/mjcf (tab-plan "welded-ring"))
+        hinge (ex/mjcf (tab-plan "four-bar"))]
+    (is (re-find #"<weld name=\"ring\" body1=\"bar-4\" body2=\"bar-1\"/>" weld))
+    (is (= ["ring" "ring/axis"]
+           (map second (re-seq #"<connect name=\"([^\"]*)\" body1=\"coupler\" body2=\"rocker\"" hinge))))
+    (is (str/includes? hinge "constraint ring closes a loop: two connects on its axis, its limits lost"))
+    (doseq [f ["welded-ring" "four-bar"]]
+      (is (re-find #"rigid body constraint \"ring\" closes a loop.*a URDF robot is a tree"
+                   (str (refusal #(ex/urdf (tab-plan f))))))))
   (let [p (plan/plan (physics-tab/load-creature "test/fixtures/blend/b45/physics.blend"))
         tab (update p :segments #(filterv (comp #{:rigid-body} :kind) %))]
     (is (re-find #"has both cortex's joints \(seg-joint\) and the Physics tab's rigid bodies"
@@ -274,10 +287,43 @@
     (is (re-find #"rigid body constraint \"motor-joint\": is a MOTOR"
                  (str (refusal #(model/tab-joints tab)))))))
 
+(defn- loop-parting
+  "How far the two bodies of each loop of plan `p` part over cortex's
+  observations `obs` (:segments every 1/60 s): {name {:apart m :turn
+  rad :apart-after-1s :turn-after-1s}}."
+  [p obs]
+  (let [placed (into {} (map (juxt :id identity)) (:segments p))
+        frame (fn [{:keys [position rotation]}] [position (geo/quat->matrix rotation)])
+        angle (fn [m] (Math/acos (max -1.0 (min 1.0 (/ (- (+ (get-in m [0 0]) (get-in m [1 1])
+                                                              (get-in m [2 2]))
+                                                           1.0)
+                                                        2.0)))))]
+    (into {} (for [{:keys [name type segments pivot rotation]} (:loops (model/tab-joints p))
+                   :let [[a b] segments
+                         [[xa Ra0] [xb Rb0]] (map (comp frame placed) segments)
+                         ;; the hinge's axis, Blender's Z, is the Y of its jME frame
+                         z (mapv #(nth % 1) (geo/quat->matrix rotation))
+                         pts (if (= "HINGE" type) [pivot (geo/v+ pivot (geo/v* 0.1 z))] [pivot])
+                         la (map #(geo/mv (geo/transpose Ra0) (geo/v- % xa)) pts)
+                         lb (map #(geo/mv (geo/transpose Rb0) (geo/v- % xb)) pts)
+                         at (fn [o id] (frame (or (get-in o [:segments id]) (placed id))))
+                         seen (vec (for [o obs
+                                         :let [[ya Ra] (at o a) [yb Rb] (at o b)]]
+                                     [(apply max (map (fn [pa pb] (geo/norm (geo/v- (geo/v+ ya (geo/mv Ra pa))
+                                                                                   (geo/v+ yb (geo/mv Rb pb)))))
+                                                      la lb))
+                                      (if (= "FIXED" type)
+                                        (angle (geo/mm (geo/transpose (geo/mm Ra (geo/transpose Ra0)))
+                                                       (geo/mm Rb (geo/transpose Rb0))))
+                                        0.0)]))
+                         worst (fn [k from] (apply max 0.0 (map #(nth % k) (subvec seen (min from (count seen))))))]]
+               [name {:apart (worst 0 0) :turn (worst 1 0)
+                      :apart-after-1s (worst 0 60) :turn-after-1s (worst 1 60)}]))))
+
 (defn- tab-run
   "Physics-tab fixture `f` loaded, planned, built and dropped in cortex
   for `seconds`: {:plan :creature :heights (centre of mass, every 1/60
-  s) :size}."
+  s) :size :parting (see `loop-parting`)}."
   [f seconds]
   (let [c (physics-tab/load-creature (tab-fixtures f))
         p (plan/plan c)
@@ -290,7 +336,7 @@
                   :when (pos? mass)
                   q (model/shape-points shape)]
               (geo/v+ position (geo/mv (geo/quat->matrix rotation) q)))]
-    {:plan p :creature c
+    {:plan p :creature c :parting (loop-parting p obs)
      :heights (mapv (fn [o] (/ (reduce + (for [[n {[_ y] :position}] (:segments o)]
                                            (* (get mass n 0.0) y)))
                                total))
@@ -326,7 +372,12 @@
                                :when (#{"GENERIC" "GENERIC_SPRING" "HINGE"} type)]
                            {:name name :type type :segments segments
                             :frame (geo/z-up-rotation (geo/quat->matrix rotation))
-                            :limits (mapv #(when (vector? %) %) (model/axis-limits c "ang"))})}
+                            :limits (mapv #(when (vector? %) %) (model/axis-limits c "ang"))})
+             :loops (for [{:keys [name type segments pivot rotation]} (:loops (model/tab-joints plan))
+                          :let [pin (geo/z-up pivot)
+                                z (mapv #(nth % 2) (geo/z-up-rotation (geo/quat->matrix rotation)))]]
+                      {:name name :segments segments :weld (= "FIXED" type)
+                       :points (if (= "HINGE" type) [pin (mapv + pin (map #(* 0.1 %) z))] [pin])})}
       root (assoc :base {:link (:id root) :pos (geo/z-up (:position root))
                          :quat (geo/matrix->quat (geo/z-up-rotation (geo/quat->matrix (:rotation root))))}))))
 
@@ -341,8 +392,8 @@
           {:keys [exit err]} (shell/sh py "scripts/export/check_export.py" manifest out)
           result (when (zero? exit) ((requiring-resolve 'cortex.blender-test/read-json) (slurp out)))]
       (is (zero? exit) err)
-      (doseq [[f {:keys [plan creature heights size]}] runs
-              :let [{:strs [mujoco bodies tab_limits urdf] mj-drop "drop"} (get result f)
+      (doseq [[f {:keys [plan creature heights size parting]}] runs
+              :let [{:strs [mujoco bodies tab_limits urdf loops] mj-drop "drop"} (get result f)
                     moments (built-moments creature)]
               :when result]
         (testing f
@@ -377,6 +428,18 @@
           (doseq [[n past] tab_limits
                   :when (not= n "ring")]
             (is (every? #(< % 0.05) past) (str n " past its limits by " past)))
+          ;; each loop holds in MuJoCo: its bodies part by less than 1 cm, a weld's turn by 0.02 rad
+          (is (= (set (map :name (:loops (model/tab-joints plan)))) (set (keys loops))))
+          (doseq [[n {:strs [apart turn apart_after_1s turn_after_1s]}] loops
+                  :let [{:keys [apart-after-1s turn-after-1s] :as mine} (parting n)]]
+            (println (format (str "Physics tab, %s: loop %s parts by at most %.4f m (%.4f after 1 s),"
+                                  " turns by %.4f rad (%.4f) in MuJoCo; in cortex %.4f m (%.4f), %.4f rad (%.4f)")
+                             f n apart apart_after_1s turn turn_after_1s
+                             (:apart mine) apart-after-1s (:turn mine) turn-after-1s))
+            ;; the kicking ring starts outside its limits: judged after its first second
+            (let [[apart turn] (if (= f "kick") [apart_after_1s turn_after_1s] [apart turn])]
+              (is (< apart 0.01) (str n ": its bodies part by " apart " m"))
+              (is (< turn 0.02) (str n ": its bodies turn by " turn " rad"))))
           (when urdf
             (doseq [{:keys [id mass]} (:segments plan) :when (pos? mass)]
               (is (close? (get-in urdf ["masses" id]) mass 1e-6) id)))
