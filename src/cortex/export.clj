@@ -298,9 +298,11 @@
       (for [[{:keys [name]} why] skipped]
         (str "constraint " name " is left out: " why))
       [:compiler {:angle "radian" :inertiafromgeom "false" :autolimits "true"}]
-      ;; limits and loops as hard as MuJoCo holds steadily (see the text)
+      ;; limits and loops as hard as MuJoCo holds steadily (see the text);
+      ;; a tree has no equality, and its document says nothing of one
       [:default [:joint {:solreflimit [(* 2 step) 1.0] :solimplimit [0.99 0.999 0.001]}]
-       [:equality {:solref [(* 2 step) 1.0] :solimp [0.99 0.999 0.001]}]]
+       (when (seq loops)
+         [:equality {:solref [(* 2 step) 1.0] :solimp [0.99 0.999 0.001]}])]
       [:option {:timestep step
                 :gravity (z-up (or (:gravity world) [0.0 -9.81 0.0]))
                 :integrator "implicitfast" :solver "Newton" :cone "pyramidal"}
