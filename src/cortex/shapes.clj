@@ -527,7 +527,7 @@
   "The collision margin cortex gives `shape` (data) on the running
   engine, unless the data carries its own :margin: a hull the engine's
   hull margin, or half a percent of its thickness if that is less and
-  the hull is thinner than cortex.engine/thin; a box or cylinder the
+  the hull is thinner than cortex.engine/thin (but not flat); a box or cylinder the
   smaller of the hull margin and a tenth of its smallest half-extent
   (inside its outer size, on both engines); a sphere or capsule its
   radius (Bullet's own rule); a compound none of its own (0.0)."
@@ -536,7 +536,9 @@
    (or (:margin shape)
        (case (:type shape)
          :hull (let [t (points-thickness (:points shape))]
-                 (if (< t (double engine/thin))
+                 ;; a flat hull (a plane's mesh) is not a small body, and
+                 ;; native Bullet refuses a margin of 0
+                 (if (< 0.0 t (double engine/thin))
                    (min (engine/hull-margin) (* 0.005 t))
                    (engine/hull-margin)))
          (:box :cylinder) (min (engine/hull-margin) (* 0.1 (double (apply min (:half-extents shape)))))

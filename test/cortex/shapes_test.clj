@@ -284,7 +284,9 @@
     (is (close? (engine/thickness comp) 2.0 0.005) "a compound's is its thinnest child's")
     (is (close? (shapes/margin {:type :hull :points [[0 0 0] [0.004 0 0] [0 0.002 0] [0 0 0.003]]})
                 (min hull-margin 1e-5) 1e-12)
-        "a hull under cortex.engine/thin thick: half a percent of its thickness")))
+        "a hull under cortex.engine/thin thick: half a percent of its thickness")
+    (is (close? (shapes/margin {:type :hull :points [[0 0 0] [1 0 0] [0 0 1] [1 0 1]]}) hull-margin 1e-12)
+        "a flat hull (a plane's mesh) keeps the engine's hull margin, which native Bullet needs positive")))
 
 (deftest small-bodies-take-more-substeps
   (is (= 1 (world/substeps-for nil) (world/substeps-for 1.0) (world/substeps-for 0.062)
