@@ -587,10 +587,14 @@
   text: cortex's limp four-legged creature rolls onto its side)."
   #{"worm" "hand" "humanoid"})
 
+(def ^:private limp-by-chance
+  "[engine fixture]: a limp drop printed, not asserted, on that engine
+  (see the text: jBullet's limp humanoid agreed by chance)."
+  #{[:jbullet "humanoid"]})
+
 (defn- drop-figures [who heights rest-speed]
   (format "%s: centre of mass %.3f m up after 1 s, %.3f m at the end, fastest segment then %.3f m/s"
           who (double (nth heights 59)) (double (peek (vec heights))) (double rest-speed)))
-
 
 (defn- check-held
   "Fixture `f`'s held drop: cortex's centre of mass where MuJoCo's is,
@@ -630,19 +634,21 @@
         (is (< (Math/abs (- (double (nth angles k)) want)) 0.05)
             (str joint " " dof " to its " end ": " (nth angles k) ", cortex's limit " want)))
       (doseq [[who {:strs [heights rest_speed]}] [["MuJoCo" drop] ["PyBullet" (get urdf "drop")]]
-              :let [alike? (settles-alike f)]]
-        (println (str f (if alike? ", limp: " ", limp, its end not yet alike: ")
+              :let [chance? (limp-by-chance [engine/name f])
+                    alike? (and (settles-alike f) (not chance?))]]
+        (println (str f (cond chance? ", limp, printed only: " alike? ", limp: "
+                              :else ", limp, its end not yet alike: ")
                       (drop-figures who heights rest_speed) "; "
                       (drop-figures "cortex" (:heights cortex) (:rest-speed cortex))))
         (testing who
-          (doseq [[label i] (cond-> [["after 1 s" 59]]
+          (doseq [[label i] (cond-> (if chance? [] [["after 1 s" 59]])
                               alike? (conj ["at the end" (dec (count heights))]))]
             (is (< (Math/abs (- (double (nth heights i)) (nth (:heights cortex) i))) (* 0.05 sz))
                 (str label ": centre of mass " (nth heights i) " m up, cortex's "
                      (nth (:heights cortex) i) ", size " sz)))
           (when alike?
             (is (< rest_speed 0.1) (str "still moving at " rest_speed " m/s")))))
-      (when (settles-alike f)
+      (when (and (settles-alike f) (not (limp-by-chance [engine/name f])))
         (is (< (:rest-speed cortex) 0.1) (str "cortex still moving at " (:rest-speed cortex))))
       (check-held f sz cortex-held mj-held)
       (is (zero? (get-in urdf ["check_urdf" "code"] 0)) (get-in urdf ["check_urdf" "output"]))

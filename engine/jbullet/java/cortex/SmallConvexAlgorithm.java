@@ -17,6 +17,7 @@ import com.bulletphysics.collision.narrowphase.PersistentManifold;
 import com.bulletphysics.collision.narrowphase.VoronoiSimplexSolver;
 import com.bulletphysics.collision.shapes.CollisionShape;
 import com.bulletphysics.collision.shapes.ConvexShape;
+import com.bulletphysics.dynamics.constraintsolver.ContactSolverInfo;
 import com.bulletphysics.linearmath.Transform;
 import com.bulletphysics.util.ObjectArrayList;
 import javax.vecmath.Vector3f;
@@ -28,8 +29,10 @@ import javax.vecmath.Vector3f;
  * 0.001, GJK's degenerate cases below 0.01, contact points merged within
  * 0.02), which at a hundredth of that size turn a box resting on a floor
  * over on contact normals 45 degrees off. A shape with no margin of its
- * own is given one inside its outer size (see `Scaled`). Pairs of
- * thicker shapes keep jBullet's own algorithm. See org/shapes.org.
+ * own is given one inside its outer size (see `Scaled`). Two thicker
+ * shapes without margins meet through it unscaled, for that margin
+ * (EPA's normals under a resting body are as far off at any size);
+ * other pairs keep jBullet's own algorithm. See org/shapes.org.
  */
 public final class SmallConvexAlgorithm extends CollisionAlgorithm {
     /** The thickness a pair's thinner shape is scaled to. */
@@ -39,7 +42,7 @@ public final class SmallConvexAlgorithm extends CollisionAlgorithm {
     private final GjkPairDetector gjk = new GjkPairDetector();
     private PersistentManifold manifold;
     private boolean ownManifold;
-    private float scale;
+    private float scale, margin;
     private Scaled scaledA, scaledB;
 
     /** The size of convex `shape` along each of its axes, read by its
@@ -60,6 +63,15 @@ public final class SmallConvexAlgorithm extends CollisionAlgorithm {
         return new Vector3f(h[0] - l[0], h[1] - l[1], h[2] - l[2]);
     }
 
+    /** Whether convex `shape` has less margin of its own than `m` (a
+     * sphere or a capsule is all margin). */
+    static boolean bare(CollisionShape shape, float m) {
+        BroadphaseNativeType type = shape.getShapeType();
+        boolean round = type == BroadphaseNativeType.SPHERE_SHAPE_PROXYTYPE
+            || type == BroadphaseNativeType.CAPSULE_SHAPE_PROXYTYPE;
+        return !(round || shape.getMargin() >= m);
+    }
+
     /** The smallest extent of convex `shape` along its axes. */
     public static float thickness(CollisionShape shape) {
         Vector3f e = extent((ConvexShape) shape, new Vector3f());
@@ -69,14 +81,18 @@ public final class SmallConvexAlgorithm extends CollisionAlgorithm {
     /** Have every pair of convex shapes in `dispatcher` meet through
      * this algorithm when one of them is thinner than `size`, and
      * through the one jBullet gives them otherwise (two spheres keep
-     * their own exact one). */
-    public static void register(CollisionDispatcher dispatcher, float size) {
+     * their own exact one); the first such pair sets `solver`'s slop
+     * to 0. With `every`, two thicker shapes without margins of their
+     * own meet through it too, unscaled. */
+    public static void register(CollisionDispatcher dispatcher, float size, boolean every,
+                                ContactSolverInfo solver) {
         BroadphaseNativeType[] types = BroadphaseNativeType.values();
         for (BroadphaseNativeType a : types) {
             for (BroadphaseNativeType b : types) {
                 if (a.isConvex() && b.isConvex() && !(a == b && a == BroadphaseNativeType.SPHERE_SHAPE_PROXYTYPE)) {
                     CollisionAlgorithmCreateFunc own = dispatcher.getCollisionConfiguration().getCollisionAlgorithmCreateFunc(a, b);
-                    dispatcher.registerCollisionCreateFunc(a.ordinal(), b.ordinal(), new CreateFunc(own, size));
+                    dispatcher.registerCollisionCreateFunc(a.ordinal(), b.ordinal(),
+                                                           new CreateFunc(own, size, every, solver));
                 }
             }
         }
@@ -85,21 +101,31 @@ public final class SmallConvexAlgorithm extends CollisionAlgorithm {
     static final class CreateFunc extends CollisionAlgorithmCreateFunc {
         final CollisionAlgorithmCreateFunc own;
         final float size;
-        CreateFunc(CollisionAlgorithmCreateFunc own, float size) {
+        final boolean every;
+        final ContactSolverInfo solver;
+        CreateFunc(CollisionAlgorithmCreateFunc own, float size, boolean every, ContactSolverInfo solver) {
             this.own = own;
             this.size = size;
+            this.every = every;
+            this.solver = solver;
         }
 
         @Override
         public CollisionAlgorithm createCollisionAlgorithm(CollisionAlgorithmConstructionInfo ci,
                                                            CollisionObject a, CollisionObject b) {
             float t = Math.min(thickness(a.getCollisionShape()), thickness(b.getCollisionShape()));
-            if (!(t < size)) {
+            boolean small = t < size;
+            float m = MARGIN * Math.min(t / UNIT, 1f);
+            if (!small && !(every && bare(a.getCollisionShape(), m) && bare(b.getCollisionShape(), m))) {
                 return own.createCollisionAlgorithm(ci, a, b);
+            }
+            if (small && solver != null) {
+                solver.linearSlop = 0f;
             }
             SmallConvexAlgorithm algo = new SmallConvexAlgorithm();
             algo.init(ci);
-            algo.scale = UNIT / Math.max(t, 1e-6f);
+            algo.scale = small ? UNIT / Math.max(t, 1e-6f) : 1f;
+            algo.margin = small ? MARGIN : m;
             algo.manifold = ci.manifold;
             if (algo.manifold == null && ci.dispatcher1.needsCollision(a, b)) {
                 algo.manifold = ci.dispatcher1.getNewManifold(a, b);
@@ -145,10 +171,10 @@ public final class SmallConvexAlgorithm extends CollisionAlgorithm {
         out.setPersistentManifold(manifold);
         final float k = scale;
         if (scaledA == null || scaledA.shape != a.getCollisionShape()) {
-            scaledA = new Scaled((ConvexShape) a.getCollisionShape(), k);
+            scaledA = new Scaled((ConvexShape) a.getCollisionShape(), k, margin);
         }
         if (scaledB == null || scaledB.shape != b.getCollisionShape()) {
-            scaledB = new Scaled((ConvexShape) b.getCollisionShape(), k);
+            scaledB = new Scaled((ConvexShape) b.getCollisionShape(), k, margin);
         }
         Scaled sa = scaledA, sb = scaledB;
         float saved = BulletGlobals.getContactBreakingThreshold();
@@ -201,20 +227,17 @@ public final class SmallConvexAlgorithm extends CollisionAlgorithm {
         final float k, margin;
         final boolean drawn;
         final Vector3f centre = new Vector3f(), shrink = new Vector3f(1f, 1f, 1f);
-        Scaled(ConvexShape shape, float k) {
+        Scaled(ConvexShape shape, float k, float given) {
             this.shape = shape;
             this.k = k;
-            BroadphaseNativeType type = shape.getShapeType();
-            boolean round = type == BroadphaseNativeType.SPHERE_SHAPE_PROXYTYPE
-                || type == BroadphaseNativeType.CAPSULE_SHAPE_PROXYTYPE;
-            drawn = !(round || shape.getMargin() * k >= MARGIN);
+            drawn = bare(shape, given / k);
             if (!drawn) {
                 margin = shape.getMargin() * k;
             } else {
                 Vector3f hi = extent(shape, centre);
-                float m = MARGIN / k;
+                float m = given / k;
                 shrink.set(1f - 2f * m / hi.x, 1f - 2f * m / hi.y, 1f - 2f * m / hi.z);
-                margin = MARGIN;
+                margin = given;
             }
         }
 

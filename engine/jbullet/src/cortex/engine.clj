@@ -159,6 +159,8 @@
   [^PhysicsJoint joint threshold]
   (>= (.getAppliedImpulse joint) (double threshold)))
 
+(declare thin)
+
 (defn blender-solver-order!
   "Have `space` solve contacts as Blender's world does, as far as jBullet
   goes: two boxes meet through cortex.BoxBoxAlgorithm, all their contact
@@ -168,14 +170,21 @@
   (one friction row a point along its sliding, in a fixed order, warm
   started; jBullet's own shuffles them every step and gives each point
   two friction rows kept from step to step). Joints are solved as
-  jBullet solves them, in the order they were added. See the Physics
-  tab chapter for what each changed."
+  jBullet solves them, in the order they were added. Full-size pairs
+  keep jBullet's own algorithm and no contact slop, unlike cortex's own
+  worlds (see `configure-space!`). See the Physics tab chapter for what
+  each changed."
   [^PhysicsSpace space]
-  (let [^DynamicsWorld w (.getDynamicsWorld space)]
-    (cortex.BoxBoxAlgorithm/register ^com.bulletphysics.collision.dispatch.CollisionDispatcher (.getDispatcher w))
+  (let [^DynamicsWorld w (.getDynamicsWorld space)
+        d ^com.bulletphysics.collision.dispatch.CollisionDispatcher (.getDispatcher w)]
+    ;; full-size pairs meet through jBullet's own algorithm
+    (cortex.SmallConvexAlgorithm/register d (float thin) false (.getSolverInfo w))
+    (cortex.BoxBoxAlgorithm/register d)
     (.setConstraintSolver ^com.bulletphysics.dynamics.DiscreteDynamicsWorld w (cortex.BlenderContactSolver.))
     (set! (.solverMode (.getSolverInfo w))
-          (int (bit-or SolverMode/SOLVER_USE_WARMSTARTING SolverMode/SOLVER_CACHE_FRIENDLY)))))
+          (int (bit-or SolverMode/SOLVER_USE_WARMSTARTING SolverMode/SOLVER_CACHE_FRIENDLY)))
+    ;; and Bullet 2.8's contacts have no slop
+    (set! (.linearSlop (.getSolverInfo w)) (float 0))))
 
 (defn- skew
   "The cross-product matrix of [x y z], rows."
@@ -543,17 +552,27 @@
   take: 20, twice Bullet's default (see the physics-trust chapter)."
   20)
 
+(def contact-slop
+  "How far a resting contact is left inside what it rests on, on
+  jBullet: 0.001 m (see the physics-trust chapter, \"Resting
+  contacts\")."
+  0.001)
+
 (defn configure-space!
   "Set `space` up as cortex simulates: jBullet's defaults but for
-  `solver-iterations`, the limit rows of its joints (see `limit-rows!`)
-  added before each step, and two convex shapes of which one is thinner
-  than `thin` meeting through cortex.SmallConvexAlgorithm (see the
-  shapes chapter)."
+  `solver-iterations` and `contact-slop` (0 once a body thinner than
+  `thin` touches anything), the limit rows of its joints (see
+  `limit-rows!`) added before each step, and two convex shapes of which
+  one is thinner than `thin`, or neither has a margin of its own,
+  meeting through cortex.SmallConvexAlgorithm (see the shapes
+  chapter)."
   ^PhysicsSpace [^PhysicsSpace space]
   (.setSolverNumIterations space (int solver-iterations))
-  (cortex.SmallConvexAlgorithm/register
-   ^com.bulletphysics.collision.dispatch.CollisionDispatcher (.getDispatcher (.getDynamicsWorld space))
-   (float thin))
+  (let [^DynamicsWorld w (.getDynamicsWorld space)]
+    (set! (.linearSlop (.getSolverInfo w)) (float contact-slop))
+    (cortex.SmallConvexAlgorithm/register
+     ^com.bulletphysics.collision.dispatch.CollisionDispatcher (.getDispatcher w)
+     (float thin) true (.getSolverInfo w)))
   (let [seen (java.util.IdentityHashMap.)
         placed (java.util.IdentityHashMap.)]
     (.addTickListener space (reify com.jme3.bullet.PhysicsTickListener
