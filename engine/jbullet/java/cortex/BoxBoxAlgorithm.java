@@ -30,9 +30,7 @@ import javax.vecmath.Vector3f;
  * extents (with margin) are used, as Blender's, and the pair's manifold
  * keeps its points within Bullet 2.8's relative breaking threshold.
  */
-public final class BoxBoxAlgorithm extends CollisionAlgorithm {
-    private PersistentManifold manifold;
-    private boolean ownManifold;
+public final class BoxBoxAlgorithm extends ManifoldAlgorithm {
 
     /** Make two boxes meet through this algorithm in `dispatcher`. */
     public static void register(CollisionDispatcher dispatcher) {
@@ -45,40 +43,12 @@ public final class BoxBoxAlgorithm extends CollisionAlgorithm {
         public CollisionAlgorithm createCollisionAlgorithm(CollisionAlgorithmConstructionInfo ci,
                                                            CollisionObject a, CollisionObject b) {
             BoxBoxAlgorithm algo = new BoxBoxAlgorithm();
-            algo.init(ci);
-            algo.manifold = ci.manifold;
-            if (algo.manifold == null && ci.dispatcher1.needsCollision(a, b)) {
-                algo.manifold = ci.dispatcher1.getNewManifold(a, b);
-                algo.ownManifold = true;
-            }
-            algo.internalSetCreateFunc(this);
+            algo.start(ci, a, b, this);
             return algo;
         }
 
         @Override
         public void releaseCollisionAlgorithm(CollisionAlgorithm algo) {
-        }
-    }
-
-    @Override
-    public void destroy() {
-        if (ownManifold && manifold != null) {
-            dispatcher.releaseManifold(manifold);
-        }
-        manifold = null;
-        ownManifold = false;
-    }
-
-    @Override
-    public float calculateTimeOfImpact(CollisionObject a, CollisionObject b, DispatcherInfo info,
-                                       ManifoldResult out) {
-        return 1f;
-    }
-
-    @Override
-    public void getAllContactManifolds(ObjectArrayList<PersistentManifold> out) {
-        if (manifold != null && ownManifold) {
-            out.add(manifold);
         }
     }
 

@@ -34,14 +34,12 @@ import javax.vecmath.Vector3f;
  * (EPA's normals under a resting body are as far off at any size);
  * other pairs keep jBullet's own algorithm. See org/shapes.org.
  */
-public final class SmallConvexAlgorithm extends CollisionAlgorithm {
+public final class SmallConvexAlgorithm extends ManifoldAlgorithm {
     /** The thickness a pair's thinner shape is scaled to. */
     public static final float UNIT = 1f;
     /** The margin, at that size, of a shape that has none. */
     public static final float MARGIN = 0.04f;
     private final GjkPairDetector gjk = new GjkPairDetector();
-    private PersistentManifold manifold;
-    private boolean ownManifold;
     private float scale, margin;
     private Scaled scaledA, scaledB;
 
@@ -123,43 +121,15 @@ public final class SmallConvexAlgorithm extends CollisionAlgorithm {
                 solver.linearSlop = 0f;
             }
             SmallConvexAlgorithm algo = new SmallConvexAlgorithm();
-            algo.init(ci);
+            algo.start(ci, a, b, this);
             algo.scale = small ? UNIT / Math.max(t, 1e-6f) : 1f;
             algo.margin = small ? MARGIN : m;
-            algo.manifold = ci.manifold;
-            if (algo.manifold == null && ci.dispatcher1.needsCollision(a, b)) {
-                algo.manifold = ci.dispatcher1.getNewManifold(a, b);
-                algo.ownManifold = true;
-            }
             algo.gjk.init(null, null, new VoronoiSimplexSolver(), new GjkEpaPenetrationDepthSolver());
-            algo.internalSetCreateFunc(this);
             return algo;
         }
 
         @Override
         public void releaseCollisionAlgorithm(CollisionAlgorithm algo) {
-        }
-    }
-
-    @Override
-    public void destroy() {
-        if (ownManifold && manifold != null) {
-            dispatcher.releaseManifold(manifold);
-        }
-        manifold = null;
-        ownManifold = false;
-    }
-
-    @Override
-    public float calculateTimeOfImpact(CollisionObject a, CollisionObject b, DispatcherInfo info,
-                                       ManifoldResult out) {
-        return 1f;
-    }
-
-    @Override
-    public void getAllContactManifolds(ObjectArrayList<PersistentManifold> out) {
-        if (manifold != null && ownManifold) {
-            out.add(manifold);
         }
     }
 
