@@ -37,9 +37,7 @@ import bpy
 from mathutils import Euler, Vector
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import dump  # noqa: E402
-import dump_physics  # noqa: E402
-import make_fixtures as mf  # noqa: E402
+import make_sim_fixtures  # noqa: E402
 from make_sim_fixtures import (box, constraint, ground, limit_angles,  # noqa: E402
                                lock_translation, reset)
 
@@ -110,23 +108,5 @@ def welded_ring():
 CASES = [("four-bar", four_bar), ("welded-ring", welded_ring)]
 
 
-def main():
-    args = dump.script_args()
-    folder = os.path.abspath(args[0] if args else "test/fixtures/loops")
-    only = set(args[1:])
-    os.makedirs(folder, exist_ok=True)
-    for name, make in CASES:
-        if only and name not in only:
-            continue
-        reset()
-        make()
-        mf.update()
-        path = os.path.join(folder, name + ".blend")
-        bpy.ops.wm.save_as_mainfile(filepath=path, check_existing=False, compress=False)
-        bpy.ops.wm.open_mainfile(filepath=path, load_ui=False)
-        dump_physics.dump_to(os.path.splitext(path)[0] + ".json")
-        print("wrote", path)
-
-
 if __name__ == "__main__":
-    main()
+    make_sim_fixtures.main(CASES, "test/fixtures/loops")

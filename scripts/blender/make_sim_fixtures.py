@@ -466,12 +466,16 @@ CASES = [("ragdoll", ragdoll), ("addon-ragdoll", addon_ragdoll), ("rig-chain", r
          ("substeps", substeps)]
 
 
-def main():
+def main(cases=None, default_folder="test/fixtures/physics-sim"):
+    """Write each of `cases` ([name, make] pairs; CASES by default), or
+    those the arguments after the folder name, into the folder (the
+    first argument, or `default_folder`) as NAME.blend and NAME.json."""
+    cases = CASES if cases is None else cases
     args = dump.script_args()
-    folder = os.path.abspath(args[0] if args else "test/fixtures/physics-sim")
+    folder = os.path.abspath(args[0] if args else default_folder)
     only = set(args[1:])
     os.makedirs(folder, exist_ok=True)
-    for name, make in CASES:
+    for name, make in cases:
         if only and name not in only:
             continue
         reset()
