@@ -186,10 +186,11 @@
   "How a simulation steps, {:iterations n :substeps k :projection bool}:
   what `solver` asked for, else the creature's Physics tab, else
   cortex's defaults (cortex.engine/solver-iterations, `thin-substeps`
-  (1 but for small bodies, see cortex.world/substeps-for), and true)."
-  [^PhysicsSpace space solver ^Node creature thin-substeps]
+  (1 but for small bodies, see cortex.world/substeps-for), and true);
+  `tab` is the creature's `tab-settings`."
+  [^PhysicsSpace space solver tab thin-substeps]
   {:iterations (.getSolverNumIterations space)
-   :substeps (long (or (:substeps solver) (:substeps (tab-settings creature)) thin-substeps))
+   :substeps (long (or (:substeps solver) (:substeps tab) thin-substeps))
    :projection (projection/enabled? space)})
 
 (defonce ^:private sight (atom nil))
@@ -229,6 +230,7 @@
          (merge {:gravity [0 -9.81 0] :floor nil :observe all-observations} opts)
          _ (check-options! opts)
          _ (when-not (has-body? creature) (body/body! creature))
+         tab (tab-settings creature)
          floor-geom (when floor (cortex.sim/floor floor))
          root (util/nodify "simulation" (cond-> [creature] floor-geom (conj floor-geom)))
          space (physics-space)
@@ -236,19 +238,18 @@
          sensors (p/sensors creature)
          g (util/vec3 gravity)]
      (engine/add-all! space root)
-     (set-solver! space (:solver opts) (double (:time-scale (tab-settings creature) 1.0)))
+     (set-solver! space (:solver opts) (double (:time-scale tab 1.0)))
      (.setGravity space g)
      (doseq [^PhysicsRigidBody b (.getRigidBodyList space)]
        (.setGravity b g)
        (.activate b))
-     (let [tab (tab-settings creature)
-           ;; a creature with a small body takes more substeps, unless
+     (let [;; a creature with a small body takes more substeps, unless
            ;; asked for a number (cortex.world/step-thin-bodies!)
            thin-substeps (if (or (:substeps (:solver opts)) (:substeps tab))
                            1
                            (world/step-thin-bodies! space (double (:time-scale tab 1.0))))]
        {:space space :creature creature :root root :observe (set observe)
-        :solver (solver-of space (:solver opts) creature thin-substeps)
+        :solver (solver-of space (:solver opts) tab thin-substeps)
         :sensors sensors
         :muscles (into {} (for [s sensors] [(:name s) (muscle/muscle s)]))
         :segments (mapv (fn [[n ^Geometry g rb]]
