@@ -107,6 +107,19 @@
     (testing label
       (is (= (world-run make floor frames) (sim-run make floor frames))))))
 
+(deftest a-step-is-a-sixtieth-of-a-second
+  (let [s (sim/simulation (body/body! (f/chain 10 2)) {:observe #{:segments}})
+        g 9.81 h (/ 1.0 60)
+        mean (fn [o k] (/ (reduce + (for [[_ seg] (:segments o)] (nth (k seg) 1))) 10))
+        y0 (mean (sim/observe s) :position)]
+    (doseq [n (range 1 31)
+            :let [o (sim/step! s)]]
+      (is (== (/ n 60.0) (:time o)))
+      (is (< (Math/abs (- (- y0 (mean o :position)) (* g h h n (inc n) 0.5))) 1e-4)
+          (str "after " n " steps the chain has fallen " (- y0 (mean o :position))))
+      (is (< (Math/abs (+ (mean o :velocity) (* g h n))) 1e-4)
+          (str "after " n " steps the chain falls at " (mean o :velocity))))))
+
 (deftest touch-reports-contacts
   (let [s (sim/simulation (util/load-blender-model f/worm-path) {:floor 0})
         in-air (:touch (sim/step! s))

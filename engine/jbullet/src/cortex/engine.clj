@@ -547,6 +547,17 @@
           (.addConstraint world l true)
           (.put placed l j))))))
 
+(def ^:private ^java.lang.reflect.Field local-time
+  "jBullet's DiscreteDynamicsWorld.localTime, made writable."
+  (doto (.getDeclaredField com.bulletphysics.dynamics.DiscreteDynamicsWorld "localTime")
+    (.setAccessible true)))
+
+(defn- start-clock!
+  "Start `space`'s world with no time handed to it, as Bullet's C++
+  world starts: jBullet's starts at 1/60 s, one step ahead."
+  [^PhysicsSpace space]
+  (.setFloat local-time (.getDynamicsWorld space) (float 0)))
+
 (def solver-iterations
   "The constraint solver's passes per Bullet step that cortex's spaces
   take: 20, twice Bullet's default (see the physics-trust chapter)."
@@ -559,14 +570,15 @@
   0.001)
 
 (defn configure-space!
-  "Set `space` up as cortex simulates: jBullet's defaults but for
-  `solver-iterations` and `contact-slop` (0 once a body thinner than
-  `thin` touches anything), the limit rows of its joints (see
+  "Set `space` up as cortex simulates: its clock at 0 (`start-clock!`),
+  jBullet's defaults but for `solver-iterations` and `contact-slop` (0
+  once a body thinner than `thin` touches anything), the limit rows of its joints (see
   `limit-rows!`) added before each step, and two convex shapes of which
   one is thinner than `thin`, or neither has a margin of its own,
   meeting through cortex.SmallConvexAlgorithm (see the shapes
   chapter)."
   ^PhysicsSpace [^PhysicsSpace space]
+  (start-clock! space)
   (.setSolverNumIterations space (int solver-iterations))
   (let [^DynamicsWorld w (.getDynamicsWorld space)]
     (set! (.linearSlop (.getSolverInfo w)) (float contact-slop))
