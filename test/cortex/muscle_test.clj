@@ -122,6 +122,17 @@
     (is (> spin 0.1) "the muscles did move the segments")
     (is (< (Math/sqrt (p/dot momentum momentum)) 1e-3))))
 
+(deftest a-held-hand-stays-where-it-lies
+  (let [s (sim/simulation (util/load-blender-model f/hand-path)
+                          {:floor {:height 0 :friction 1.0} :observe #{:segments}})
+        hold (into {} (for [[n {:keys [type]}] (:muscles s)]
+                        [n {:target (if (= type :hinge) 0.0 [0.0 0.0 0.0])}]))
+        palm (fn [steps] (get-in (last (repeatedly steps #(sim/step! s hold))) [:segments "palm" :position]))
+        at-3 (palm 180)
+        at-8 (palm 300)
+        moved (Math/sqrt (reduce + (map #(let [d (- (double %1) (double %2))] (* d d)) at-8 at-3)))]
+    (is (< moved 0.01) (str "the held palm moved " moved " between 3 s and 8 s"))))
+
 (deftest bad-actions-are-refused-whole
   (let [s (sim/simulation (f/chain 4 0) {:gravity [0 0 0]})
         fresh (sim/simulation (f/chain 4 0) {:gravity [0 0 0]})

@@ -158,17 +158,25 @@
   [^PhysicsRigidBody rb]
   (triple (.getInverseInertiaLocal rb (Vector3f.))))
 
+(def ^:private torqued
+  "A body's application data while it holds a torque from
+  `apply-torques!`: `configure-space!`'s listener hands that torque to
+  the body as impulses, substep by substep (see `torques-as-impulses!`)."
+  (Object.))
+
 (defn apply-torques!
   "Torque `t` ([x y z], world) on the engine body `rb-b` and -t on `rb-a`,
-  for the next step; both woken."
+  for the next step; both woken, and marked as `torqued`."
   [^PhysicsRigidBody rb-a ^PhysicsRigidBody rb-b [x y z]]
   (let [t (Vector3f. (float x) (float y) (float z))]
     (when (pos? (.getMass rb-b))
       (.applyTorque rb-b t)
+      (.setApplicationData rb-b torqued)
       (.activate rb-b))
     (.negateLocal t)
     (when (pos? (.getMass rb-a))
       (.applyTorque rb-a t)
+      (.setApplicationData rb-a torqued)
       (.activate rb-a))))
 
 (defn set-inertia!
@@ -501,6 +509,36 @@
   [joint _spec]
   joint)
 
+(defn- torques-as-impulses!
+  "Before a substep of `h` seconds: each body of `space` marked
+  `torqued` that holds a torque t is given the impulse t h on its spin,
+  and t is taken off it for the substep and added to `held` (body, then
+  t) for `restore-torques!`; a body holding none is unmarked."
+  [^PhysicsSpace space h ^java.util.ArrayList held]
+  (let [it (.iterator (.getRigidBodyList space))
+        t (Vector3f.)]
+    (while (.hasNext it)
+      (let [^PhysicsRigidBody b (.next it)]
+        (when (identical? torqued (.getApplicationData b))
+          (.totalAppliedTorque b t)
+          (if (and (zero? (.x t)) (zero? (.y t)) (zero? (.z t)))
+            (.setApplicationData b nil)
+            (let [kept (.clone t)]
+              (.applyTorqueImpulse b (.mult t (float h)))
+              (.applyTorque b (.negate kept))
+              (.add held b)
+              (.add held kept))))))))
+
+(defn- restore-torques!
+  "After a substep: give back the torques `torques-as-impulses!` took
+  off, and empty `held`."
+  [^java.util.ArrayList held]
+  (loop [i 0]
+    (when (< i (.size held))
+      (.applyTorque ^PhysicsRigidBody (.get held i) ^Vector3f (.get held (inc i)))
+      (recur (+ i 2))))
+  (.clear held))
+
 (def solver-iterations
   "The constraint solver's passes per Bullet step that cortex's spaces
   take: 20, twice Bullet's default (see the physics-trust chapter)."
@@ -508,8 +546,9 @@
 
 (defn configure-space!
   "Set `space` up as cortex simulates: `solver-iterations`; split
-  impulse off, as in jBullet; hinges limited speculatively; Blender's
-  collision collections decide which of its bodies collide (see
+  impulse off, as in jBullet; hinges limited speculatively; torques
+  handed over as impulses (`torques-as-impulses!`); Blender's collision
+  collections decide which of its bodies collide (see
   `set-collections!`)."
   ^PhysicsSpace [^PhysicsSpace space]
   (.setSolverNumIterations space (int solver-iterations))
@@ -519,9 +558,12 @@
     ;; warm starting (and SIMD, native Bullet's own default)
     (.setMode (int (bit-or 1 4 256))))
   (.addCollisionGroupListener space collections-listener (int blender-group))
-  (.addTickListener space (reify com.jme3.bullet.PhysicsTickListener
-                            (prePhysicsTick [_ s _] (speculate! s))
-                            (physicsTick [_ _ _])))
+  (let [held (java.util.ArrayList.)]
+    (.addTickListener space (reify com.jme3.bullet.PhysicsTickListener
+                              (prePhysicsTick [_ s h]
+                                (speculate! s)
+                                (torques-as-impulses! s h held))
+                              (physicsTick [_ _ _] (restore-torques! held)))))
   space)
 
 (defn- scene-bodies
