@@ -589,7 +589,8 @@
 
 (def ^:private limp-by-chance
   "[engine fixture]: a limp drop printed, not asserted, on that engine
-  (see the text: jBullet's limp humanoid agreed by chance)."
+  (see the text: jBullet's limp humanoid lands deeper and is thrown
+  back up, and is higher than MuJoCo's after 1 s at every heading)."
   #{[:jbullet "humanoid"]})
 
 (defn- drop-figures [who heights rest-speed]
