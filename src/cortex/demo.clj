@@ -69,7 +69,7 @@
   (.setTimer world (RatchetTimer. 60))
   world)
 
-(def sky
+(def ^com.jme3.math.ColorRGBA sky
   "The colour behind everything."
   (ColorRGBA. 0.62 0.77 0.93 1))
 
