@@ -1,8 +1,9 @@
 ;; Generated from org/geometry.org by lein tangle: edit the chapter, not this file.
 (ns cortex.geometry
-  "Geometry of point sets, as plain data: the volume of a convex hull.
+  "Geometry of point sets, as plain data: the volume of a convex hull,
+  and how thin a set of points is.
 
-  Entry points: `hull-volume`."
+  Entry points: `hull-volume`, `points-thickness`."
   )
 
 (set! *warn-on-reflection* true)
@@ -80,3 +81,10 @@
                           [] planes)]
         (reduce + (for [{:keys [unit height on]} faces]
                     (/ (* (Math/abs (polygon-area (mapv ps on) unit)) (double height)) 3.0)))))))
+
+(defn points-thickness
+  "The smallest extent of `points` ([[x y z] ...], at least one) along
+  an axis."
+  ^double [points]
+  (apply min (for [i (range 3) :let [xs (map #(double (nth % i)) points)]]
+               (- (double (apply max xs)) (double (apply min xs))))))

@@ -14,6 +14,7 @@
   tolerances), `margin` and `collision-shape` (Bullet's shape of the
   data)."
   (:require [cortex.engine :as engine]
+            [cortex.geometry :as geometry]
             [cortex.mass :as mass]
             [cortex.util :as util])
   (:import (com.jme3.bullet.collision.shapes BoxCollisionShape CapsuleCollisionShape
@@ -517,12 +518,6 @@
            (first shapes)
            :else {:type :compound :children (mapv child shapes)}))))))
 
-(defn- points-thickness
-  "The smallest extent of `points` ([[x y z] ...]) along an axis."
-  ^double [points]
-  (apply min (for [i (range 3) :let [xs (map #(double (nth % i)) points)]]
-               (- (double (apply max xs)) (double (apply min xs))))))
-
 (defn margin
   "The collision margin cortex gives `shape` (data) on the running
   engine, unless the data carries its own :margin: a hull the engine's
@@ -535,7 +530,7 @@
   (double
    (or (:margin shape)
        (case (:type shape)
-         :hull (let [t (points-thickness (:points shape))]
+         :hull (let [t (geometry/points-thickness (:points shape))]
                  ;; a flat hull (a plane's mesh) is not a small body, and
                  ;; native Bullet refuses a margin of 0
                  (if (< 0.0 t (double engine/thin))

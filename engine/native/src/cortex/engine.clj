@@ -304,9 +304,7 @@
               (reduce min ##Inf (map #(t (.getShape ^ChildCollisionShape %))
                                      (.listChildren ^CompoundCollisionShape s)))
               HullCollisionShape
-              (let [ps (partition 3 (.copyHullVertices ^HullCollisionShape s))]
-                (apply min (for [i (range 3) :let [xs (map #(double (nth % i)) ps)]]
-                             (- (double (apply max xs)) (double (apply min xs))))))
+              (geometry/points-thickness (partition 3 (.copyHullVertices ^HullCollisionShape s)))
               com.jme3.bullet.collision.shapes.BoxCollisionShape
               (let [e (.getHalfExtents ^com.jme3.bullet.collision.shapes.BoxCollisionShape s nil)]
                 (* 2.0 (min (.x e) (.y e) (.z e))))
