@@ -4,6 +4,7 @@
             [cortex.body :as body]
             [cortex.drops :refer [cone-angles drop! energy export lift! overshoot speeds]]
             [cortex.engine :as engine]
+            [cortex.joint-fixtures :as f]
             [cortex.projection :as projection]
             [cortex.proprioception :as p]
             [cortex.sim :as sim]
@@ -183,3 +184,22 @@
     (is (zero? (count (filter #(> (double %) 0.02) vs)))
         (format "%s: %d steps over 0.02 m/s, the fastest %.3f" what
                 (count (filter #(> (double %) 0.02) vs)) (apply max vs)))))
+
+(deftest friction-is-coulombs
+  (doseq [deg [20 30 35 45]]
+    (let [c (body/body! (f/chain 1 0.2) {:sleeping-thresholds [0 0]})
+          a (Math/toRadians deg)
+          g 9.81
+          s (sim/simulation c {:observe #{:segments} :floor {:height 0 :friction 1.0}
+                               :gravity [(* g (Math/sin a)) (- (* g (Math/cos a))) 0]})
+          speed (fn [steps] (get-in (last (repeatedly steps #(sim/step! s {}))) [:segments "seg-0" :velocity 0]))
+          v1 (speed 60)
+          v3 (speed 120)
+          law (max 0.0 (* g (- (Math/sin a) (* 0.5 (Math/cos a)))))]
+      (println (format "friction on %s, %d degrees: %.3f m/s^2 from 1 s to 3 s, the law's %.3f"
+                       engine/label deg (/ (- v3 v1) 2.0) law))
+      (testing (str deg " degrees")
+        (if (zero? law)
+          (is (< (Math/abs (double v3)) 0.01) (str "the box slides at " v3 " m/s"))
+          (is (< (Math/abs (- (/ (- v3 v1) 2.0) law)) 0.05)
+              (str "acceleration " (/ (- v3 v1) 2.0) " m/s^2, the law's " law)))))))
