@@ -122,6 +122,19 @@
     (is (> spin 0.1) "the muscles did move the segments")
     (is (< (Math/sqrt (p/dot momentum momentum)) 1e-3))))
 
+(deftest a-torque-turns-a-segment-as-newton-says
+  (doseq [k [1 4]]
+    (let [c (body/body! (f/two-segments "{:type :hinge :limit [-3 3] :axis (Vector3f. 0 0 1)}"
+                                        Quaternion/IDENTITY [0 1] 0)
+                        {:angular-damping 0.0 :sleeping-thresholds [0 0]})
+          s (sim/simulation c {:gravity [0 0 0] :observe #{:joints} :solver {:substeps k}})
+          o (last (repeatedly 30 #(sim/step! s {"elbow" 1.0})))
+          moment (+ (/ (+ (* 1.9 1.9) (* 0.4 0.4)) 12.0) 1.0)
+          want (/ 0.5 moment)
+          w (double (get-in o [:joints "elbow" :velocity]))]
+      (is (< (Math/abs (- (Math/abs w) want)) (* 1e-3 want))
+          (str k " substeps: turning at " w " rad/s after 0.5 s, Newton's " want)))))
+
 (deftest a-held-hand-stays-where-it-lies
   (let [s (sim/simulation (util/load-blender-model f/hand-path)
                           {:floor {:height 0 :friction 1.0} :observe #{:segments}})
