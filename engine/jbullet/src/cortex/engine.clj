@@ -572,10 +572,10 @@
 (defn configure-space!
   "Set `space` up as cortex simulates: its clock at 0 (`start-clock!`),
   jBullet's defaults but for `solver-iterations` and `contact-slop` (0
-  once a body thinner than `thin` touches anything), the limit rows of its joints (see
-  `limit-rows!`) added before each step, and two convex shapes of which
-  one is thinner than `thin`, or neither has a margin of its own,
-  meeting through cortex.SmallConvexAlgorithm (see the shapes
+  once a body thinner than `thin` touches anything), the limit rows of
+  its joints (see `limit-rows!`) added before each step, and two convex
+  shapes of which one is thinner than `thin`, or neither has a margin of
+  its own, meeting through cortex.SmallConvexAlgorithm (see the shapes
   chapter)."
   ^PhysicsSpace [^PhysicsSpace space]
   (start-clock! space)
