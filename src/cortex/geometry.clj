@@ -1,9 +1,10 @@
 ;; Generated from org/geometry.org by lein tangle: edit the chapter, not this file.
 (ns cortex.geometry
   "Geometry of point sets, as plain data: the volume of a convex hull,
-  and how thin a set of points is.
+  and how thin a set of points is, and the thickness below which a body
+  is small.
 
-  Entry points: `hull-volume`, `points-thickness`."
+  Entry points: `hull-volume`, `points-thickness`, `thin`."
   )
 
 (set! *warn-on-reflection* true)
@@ -81,6 +82,12 @@
                           [] planes)]
         (reduce + (for [{:keys [unit height on]} faces]
                     (/ (* (Math/abs (polygon-area (mapv ps on) unit)) (double height)) 3.0)))))))
+
+(def thin
+  "The thickness below which a body is small, on either engine: 0.05,
+  under the thinnest segment of any pinned drop (a stranger's lower arm,
+  0.062). See the shapes chapter, \"Small and thin bodies\"."
+  0.05)
 
 (defn points-thickness
   "The smallest extent of `points` ([[x y z] ...], at least one) along

@@ -5,6 +5,7 @@
   set of functions. A body's engine object (`rigid-body`) is jBullet's
   own RigidBody, read without going through jME."
   (:refer-clojure :exclude [name])
+  (:require [cortex.geometry :as geometry])
   (:import (com.bulletphysics.collision.broadphase Dispatcher)
            (com.bulletphysics.collision.narrowphase ManifoldPoint PersistentManifold)
            (com.bulletphysics.collision.dispatch CollisionObject)
@@ -159,8 +160,6 @@
   [^PhysicsJoint joint threshold]
   (>= (.getAppliedImpulse joint) (double threshold)))
 
-(declare thin)
-
 (defn blender-solver-order!
   "Have `space` solve contacts as Blender's world does, as far as jBullet
   goes: two boxes meet through cortex.BoxBoxAlgorithm, all their contact
@@ -178,7 +177,7 @@
   (let [^DynamicsWorld w (.getDynamicsWorld space)
         d ^com.bulletphysics.collision.dispatch.CollisionDispatcher (.getDispatcher w)]
     ;; full-size pairs meet through jBullet's own algorithm
-    (cortex.SmallConvexAlgorithm/register d (float thin) false (.getSolverInfo w))
+    (cortex.SmallConvexAlgorithm/register d (float geometry/thin) false (.getSolverInfo w))
     (cortex.BoxBoxAlgorithm/register d)
     (.setConstraintSolver ^com.bulletphysics.dynamics.DiscreteDynamicsWorld w (cortex.BlenderContactSolver.))
     (set! (.solverMode (.getSolverInfo w))
@@ -323,11 +322,8 @@
   ^double []
   0.0)
 
-(def thin
-  "The thickness below which a body is small, on either engine: 0.05,
-  under the thinnest segment of any pinned drop (a stranger's lower arm,
-  0.062). See the shapes chapter, \"Small and thin bodies\"."
-  0.05)
+(def ^{:doc "The thickness below which a body is small: cortex.geometry/thin."}
+  thin geometry/thin)
 
 (defn thickness
   "The smallest extent of `shape` along its own axes (of a compound, its
@@ -584,7 +580,7 @@
     (set! (.linearSlop (.getSolverInfo w)) (float contact-slop))
     (cortex.SmallConvexAlgorithm/register
      ^com.bulletphysics.collision.dispatch.CollisionDispatcher (.getDispatcher w)
-     (float thin) true (.getSolverInfo w)))
+     (float geometry/thin) true (.getSolverInfo w)))
   (let [seen (java.util.IdentityHashMap.)
         placed (java.util.IdentityHashMap.)]
     (.addTickListener space (reify com.jme3.bullet.PhysicsTickListener

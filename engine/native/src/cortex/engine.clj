@@ -277,18 +277,15 @@
   cortex.geometry/hull-volume."}
   hull-volume geometry/hull-volume)
 
+(def ^{:doc "The thickness below which a body is small: cortex.geometry/thin."}
+  thin geometry/thin)
+
 (defn hull-margin
   "The collision margin cortex gives hull shapes: 0.001, as near
   jme3-jbullet's 0 as Minie allows (it refuses 0; native Bullet's
   default is 0.04)."
   ^double []
   0.001)
-
-(def thin
-  "The thickness below which a body is small, on either engine: 0.05,
-  under the thinnest segment of any pinned drop (a stranger's lower arm,
-  0.062). See the shapes chapter, \"Small and thin bodies\"."
-  0.05)
 
 (defn thickness
   "The smallest extent of `shape` along its own axes (of a compound, its
