@@ -61,8 +61,8 @@
 (defn- fire-at-palm!
   "Stand low beside the palm, aim at it and press space."
   [w creature]
-  (let [palm (first (filter #(= "palm" (.getName %)) (util/node-seq creature)))
-        target (.getWorldTranslation palm)]
+  (let [palm (first (filter #(= "palm" (body/segment-name %)) (body/segments creature)))
+        target (.getPhysicsLocation ^RigidBodyControl (.getControl palm RigidBodyControl))]
     (doto (.getCamera w)
       (.setLocation (.add target (Vector3f. 6 0.2 0)))
       (.lookAt target Vector3f/UNIT_Y))
