@@ -38,6 +38,7 @@
     rotation-matrix [[1] "a jME body's rotation now, a new Matrix3f"]
     linear-velocity [[1] "an engine body's velocity now, [x y z]"]
     angular-velocity [[1] "an engine body's angular velocity now, [x y z]"]
+    body-states [[1] "many engine bodies' states now, 13 doubles each, in one array"]
     inverse-mass [[1] "1/m of an engine body, 0 for a static one"]
     inverse-inertia [[1] "the inverse principal moments of an engine body, [x y z]"]
     apply-torques! [[3] "torque t on one engine body and -t on another"]

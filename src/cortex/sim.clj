@@ -81,6 +81,14 @@
                       {:names (vec twice)})))
     segs))
 
+(defn- offset-of
+  "A segment's offset (cortex.segment/mass-offset's {:centre [x y z]
+  :rotation Quaternion}, or nil) as `segment-state` uses it at every
+  step: the centre as a Vector3f, the rotation inverted, once."
+  [offset]
+  (when-let [{:keys [centre ^com.jme3.math.Quaternion rotation]} offset]
+    {:centre-v (util/vec3 centre) :inverse (.inverse rotation)}))
+
 (defn- identity-map ^Map [pairs]
   (let [m (IdentityHashMap.)]
     (doseq [[k v] pairs] (.put m k v))
@@ -235,7 +243,12 @@
          root (util/nodify "simulation" (cond-> [creature] floor-geom (conj floor-geom)))
          space (physics-space)
          segs (physical-segments creature)
-         sensors (p/sensors creature)
+         ;; the engine bodies an observation reads: the segments' in
+         ;; their order (a segment's state is its body's, by place),
+         ;; then any other a joint joins
+         joint-sensors (p/sensors creature)
+         bodies (p/bodies-of (mapv #(nth % 2) segs) joint-sensors)
+         sensors (p/indexed joint-sensors bodies)
          g (util/vec3 gravity)]
      (engine/add-all! space root)
      (set-solver! space (:solver opts) (double (:time-scale tab 1.0)))
@@ -251,15 +264,17 @@
        {:space space :creature creature :root root :observe (set observe)
         :solver (solver-of space (:solver opts) tab thin-substeps)
         :sensors sensors
+        :bodies bodies
         :muscles (into {} (for [s sensors] [(:name s) (muscle/muscle s)]))
         :segments (mapv (fn [[n ^Geometry g rb]]
-                          [n rb (segment/mass-offset g)])
+                          [n rb (offset-of (segment/mass-offset g))])
                         segs)
         :controls (vec (for [^Geometry geom (body/segments root)
                              :let [c (.getControl geom RigidBodyControl)]
                              :when c]
                          [geom c]))
         :segment-names (identity-map (for [[n _ rb] segs] [rb n]))
+        :untouched (touch/untouched (identity-map (for [[n _ rb] segs] [rb n])))
         :object-names (identity-map (for [[n _ rb] (when floor-geom (physical-segments root))
                                           :when (= n "floor")]
                                       [rb n]))
@@ -288,34 +303,35 @@
   (/ (double (steps sim)) 60.0))
 
 (defn- segment-state
-  "Segment `rb`'s state in the segment's own frame: a body whose centre
-  of mass is off the segment's origin, or whose principal axes are
-  turned from the segment's (see the body chapter's mass properties),
-  carries `offset`, {:centre [x y z] :rotation Quaternion}; its position
-  and rotation are taken back to the segment's origin and axes, and the
+  "The state of the segment whose body is the `i`th of `states`
+  (cortex.engine/body-states), in the segment's own frame: a body whose
+  centre of mass is off the segment's origin, or whose principal axes
+  are turned from the segment's (see the body chapter's mass
+  properties), carries `offset` (see `offset-of`); its position and
+  rotation are taken back to the segment's origin and axes, and the
   velocity is the origin's."
-  [rb offset]
-  (let [p (engine/position rb)
-        [qx qy qz qw :as q] (engine/orientation rb)
-        lin (engine/linear-velocity rb)
-        w (engine/angular-velocity rb)]
-    (if-let [{:keys [centre ^com.jme3.math.Quaternion rotation]} offset]
-      (let [body-rot (com.jme3.math.Quaternion. (float qx) (float qy) (float qz) (float qw))
-            rot (.mult body-rot (.inverse rotation))
+  [^doubles states ^long i offset]
+  (let [k (* 13 i)
+        at (fn ^double [^long j] (aget states (+ k j)))
+        p [(at 0) (at 1) (at 2)]
+        q [(at 3) (at 4) (at 5) (at 6)]
+        lin [(at 7) (at 8) (at 9)]
+        w [(at 10) (at 11) (at 12)]]
+    (if-let [{:keys [^com.jme3.math.Vector3f centre-v ^com.jme3.math.Quaternion inverse]} offset]
+      (let [body-rot (com.jme3.math.Quaternion. (float (at 3)) (float (at 4)) (float (at 5))
+                                                (float (at 6)))
+            rot (.mult body-rot inverse)
             ;; from the centre of mass back to the origin, in the world
-            back (.negate (.mult rot (util/vec3 centre)))
+            back (.negate (.mult rot centre-v))
             ;; on primitives (every step, every segment), the arithmetic
             ;; the vectors did: a double plus a float's double
             bx (double (.x back)) by (double (.y back)) bz (double (.z back))
-            [px py pz] p
-            [vx vy vz] lin
-            [wx wy wz] w
-            wx (double wx) wy (double wy) wz (double wz)]
-        {:position [(+ (double px) bx) (+ (double py) by) (+ (double pz) bz)]
+            wx (at 10) wy (at 11) wz (at 12)]
+        {:position [(+ (at 0) bx) (+ (at 1) by) (+ (at 2) bz)]
          :rotation [(.getX rot) (.getY rot) (.getZ rot) (.getW rot)]
-         :velocity [(+ (double vx) (- (* wy bz) (* wz by)))
-                    (+ (double vy) (- (* wz bx) (* wx bz)))
-                    (+ (double vz) (- (* wx by) (* wy bx)))]
+         :velocity [(+ (at 7) (- (* wy bz) (* wz by)))
+                    (+ (at 8) (- (* wz bx) (* wx bz)))
+                    (+ (at 9) (- (* wx by) (* wy bx)))]
          :angular-velocity w})
       {:position p :rotation q :velocity lin :angular-velocity w})))
 
@@ -327,17 +343,23 @@
   :rotation :velocity :angular-velocity}}, jME's world axes), :touch and,
   with eyes, :eyes (see cortex.sight/see!)."
   ([sim] (observe sim (:observe sim)))
-  ([{:keys [sensors segments space segment-names object-names sight] :as sim} parts]
+  ([{:keys [sensors segments bodies space segment-names object-names untouched sight] :as sim}
+    parts]
    (if (empty? parts)
      {:time (sim-time sim)}
-   (cond-> {:time (sim-time sim)}
-     (and sight (contains? parts :eyes))
-     (assoc :eyes (do (sync! sim) ((:see! (sight-hooks)) sight)))
-     (contains? parts :joints) (assoc :joints (p/read-joints sensors))
-     (contains? parts :segments)
-     (assoc :segments (persistent! (reduce (fn [m [n rb offset]] (assoc! m n (segment-state rb offset)))
-                                           (transient {}) segments)))
-     (contains? parts :touch) (assoc :touch (touch/contacts space segment-names object-names))))))
+   (let [joints? (contains? parts :joints) segments? (contains? parts :segments)
+         ;; every body read once, for the joints and the segments both
+         states (when (or joints? segments?) (engine/body-states bodies))]
+     (cond-> {:time (sim-time sim)}
+       (and sight (contains? parts :eyes))
+       (assoc :eyes (do (sync! sim) ((:see! (sight-hooks)) sight)))
+       joints? (assoc :joints (p/read-joints sensors states))
+       segments?
+       (assoc :segments (persistent! (reduce (fn [m [i [n _ offset]]]
+                                               (assoc! m n (segment-state states i offset)))
+                                             (transient {}) (map-indexed vector segments))))
+       (contains? parts :touch)
+       (assoc :touch (touch/contacts space segment-names object-names untouched)))))))
 
 (defn ^:api step!
   "Apply `actions` (see cortex.muscle; nil or {} for none) for one step,

@@ -35,10 +35,38 @@
         (apply str (map #(format "%02x" (bit-and 0xff (long %))) (.digest d))))
       (finally (sim/destroy! s)))))
 
+(def ^:private observed
+  "Drops pinned with everything observed (joints, segments and touch),
+  the creature's muscles acting in every other second: name -> path."
+  {"hand/observed" "assets/Models/test-creature/hand.blend"
+   "stranger-humanoid/observed" "test/fixtures/strangers/humanoid.blend"})
+
+(defn observed-hash
+  "The hash of `observed` drop `name` on the running engine: its every
+  observation at every one of 600 steps, as text."
+  [name]
+  (let [^Node c (util/load-blender-model (observed name))
+        _ (drops/place! c {})
+        s (sim/simulation c {:floor {:height 0 :friction 1.0}})
+        act (into {} (for [[n m] (:muscles s)]
+                       [n (if (= :hinge (:type m)) 0.3 [0.2 -0.1 0.3])]))
+        sorted #(into (sorted-map) %)]
+    (try
+      (let [d (MessageDigest/getInstance "SHA-256")]
+        (dotimes [i 600]
+          (let [o (sim/step! s (when (odd? (quot i 60)) act))]
+            (.update d (.getBytes (pr-str [(sorted (:joints o)) (sorted (:segments o))
+                                           (sorted (for [[k v] (:touch o)]
+                                                     [k (update v :touching sort)]))])
+                                  "UTF-8"))))
+        (apply str (map #(format "%02x" (bit-and 0xff (long %))) (.digest d))))
+      (finally (sim/destroy! s)))))
+
 (deftest drops-keep-their-hashes
   (let [f (io/file hashes-file)
         stored (if (.exists f) (edn/read-string (slurp f)) {})
-        now (into (sorted-map) (for [n (keys creatures)] [n (drop-hash n)]))]
+        now (into (sorted-map) (concat (for [n (keys creatures)] [n (drop-hash n)])
+                                       (for [n (keys observed)] [n (observed-hash n)])))]
     (if (System/getenv "CORTEX_RECORD_DROP_HASHES")
       (spit f (with-out-str
                 (pprint/pprint (into (sorted-map)

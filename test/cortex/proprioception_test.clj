@@ -84,6 +84,24 @@
           (is (< (Math/abs (- (double twist) t)) 1e-4))
           (is (every? #(< (Math/abs (double %)) 1e-4) (map - swing [sy sz]))))))))
 
+(deftest a-cone-read-on-primitives-is-read-as-on-vectors
+  ;; jme-swing-twist is swing-twist written out: the same numbers to the
+  ;; bit, for any rotation, w of either sign, and near the identity
+  (let [r (java.util.Random. 20261128)
+        g #(- (* 2.0 (.nextDouble r)) 1.0)
+        qs (concat [[0.0 0.0 0.0 1.0] [0.0 0.0 0.0 -1.0] [1e-14 -2e-14 0.0 1.0] [0.0 3e-9 -4e-9 1.0]
+                    [0.0 0.0 1.0 0.0]]
+                   (for [_ (range 20000)
+                         :let [[x y z w] [(g) (g) (g) (g)]
+                               n (Math/sqrt (+ (* x x) (* y y) (* z z) (* w w)))]]
+                     (mapv #(/ (double %) n) [x y z w])))
+        differ (remove (fn [[x y z w :as q]]
+                         ;; printed, so that -0.0 and 0.0 differ too
+                         (= (pr-str (p/swing-twist (p/jme->blender q)))
+                            (pr-str (p/jme-swing-twist x y z w))))
+                       qs)]
+    (is (empty? differ) (str (count differ) " rotations read differently, first " (first differ)))))
+
 (deftest a-creature-without-a-body-is-an-error
   (is (thrown-with-msg? clojure.lang.ExceptionInfo #"has no body yet: call body! first"
                         (p/proprioception (f/two-segments (hinge "0 1 0"))))))

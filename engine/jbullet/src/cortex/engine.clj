@@ -90,6 +90,28 @@
   [^RigidBody rb]
   (triple (.getAngularVelocity rb (javax.vecmath.Vector3f.))))
 
+(defn body-states
+  "The state of each engine body of `rbs` now, in one new double array,
+  13 numbers a body in their order: centre of mass x y z, orientation
+  x y z w, velocity x y z, angular velocity x y z (jME's axes); each
+  number is the float the getters above read."
+  ^doubles [rbs]
+  (let [out (double-array (* 13 (count rbs)))
+        q (Quat4f.) v (javax.vecmath.Vector3f.)
+        put3 (fn [^long i ^javax.vecmath.Vector3f v]
+               (aset out i (double (.x v))) (aset out (+ i 1) (double (.y v)))
+               (aset out (+ i 2) (double (.z v))))]
+    (reduce (fn [^long i ^RigidBody rb]
+              (put3 i (.getCenterOfMassPosition rb v))
+              (.getOrientation rb q)
+              (aset out (+ i 3) (double (.x q))) (aset out (+ i 4) (double (.y q)))
+              (aset out (+ i 5) (double (.z q))) (aset out (+ i 6) (double (.w q)))
+              (put3 (+ i 7) (.getLinearVelocity rb v))
+              (put3 (+ i 10) (.getAngularVelocity rb v))
+              (+ i 13))
+            0 rbs)
+    out))
+
 (defn inverse-mass
   "1/m of the engine body `rb`, 0 for a static one."
   ^double [^RigidBody rb]

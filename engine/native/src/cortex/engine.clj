@@ -147,6 +147,28 @@
   [^PhysicsRigidBody rb]
   (triple (.getAngularVelocity rb (Vector3f.))))
 
+(defn body-states
+  "The state of each engine body of `rbs` now, in one new double array,
+  13 numbers a body in their order: centre of mass x y z, orientation
+  x y z w, velocity x y z, angular velocity x y z (jME's axes); each
+  number is the float the getters above read."
+  ^doubles [rbs]
+  (let [out (double-array (* 13 (count rbs)))
+        q (Quaternion.) v (Vector3f.)
+        put3 (fn [^long i ^Vector3f v]
+               (aset out i (double (.x v))) (aset out (+ i 1) (double (.y v)))
+               (aset out (+ i 2) (double (.z v))))]
+    (reduce (fn [^long i ^PhysicsRigidBody rb]
+              (put3 i (.getPhysicsLocation rb v))
+              (.getPhysicsRotation rb q)
+              (aset out (+ i 3) (double (.getX q))) (aset out (+ i 4) (double (.getY q)))
+              (aset out (+ i 5) (double (.getZ q))) (aset out (+ i 6) (double (.getW q)))
+              (put3 (+ i 7) (.getLinearVelocity rb v))
+              (put3 (+ i 10) (.getAngularVelocity rb v))
+              (+ i 13))
+            0 rbs)
+    out))
+
 (defn inverse-mass
   "1/m of the engine body `rb`, 0 for a static one."
   ^double [^PhysicsRigidBody rb]
@@ -595,17 +617,18 @@
   `collision-object` names bodies), touching? when a point lies within
   `touch-distance` or carried an impulse, impulse the summed normal
   impulse of the points in contact. `wanted?` (of a collision object)
-  picks the manifolds worth reading; the others are skipped. Every
-  point's impulse counts: native Bullet's resting points lie a hair
-  apart (within its contact threshold) and still carry the weight."
+  picks the manifolds worth reading; the others, and those holding no
+  point, are skipped. Every point's impulse counts: native Bullet's
+  resting points lie a hair apart (within its contact threshold) and
+  still carry the weight."
   [^PhysicsSpace space touch-distance wanted? f init]
   (let [d (double touch-distance)]
     (reduce (fn [acc ^long m]
-              (let [b0 (PhysicsCollisionObject/findInstance (PersistentManifolds/getBodyAId m))
-                    b1 (PhysicsCollisionObject/findInstance (PersistentManifolds/getBodyBId m))]
-                (if (or (wanted? b0) (wanted? b1))
-                  (let [n (PersistentManifolds/countPoints m)
-                        [touching? impulse]
+              (let [n (PersistentManifolds/countPoints m)
+                    b0 (when (pos? n) (PhysicsCollisionObject/findInstance (PersistentManifolds/getBodyAId m)))
+                    b1 (when (pos? n) (PhysicsCollisionObject/findInstance (PersistentManifolds/getBodyBId m)))]
+                (if (and (pos? n) (or (wanted? b0) (wanted? b1)))
+                  (let [[touching? impulse]
                         (loop [i 0 touching? false impulse 0.0]
                           (if (< i n)
                             (let [p (PersistentManifolds/getPointId m i)
