@@ -597,9 +597,15 @@
   (format "%s: centre of mass %.3f m up after 1 s, %.3f m at the end, fastest segment then %.3f m/s"
           who (double (nth heights 59)) (double (peek (vec heights))) (double rest-speed)))
 
+(def ^:private holds-its-pose
+  "The fixtures whose muscles hold their pose, held, so that they come
+  to rest (see the text)."
+  #{"worm" "hand"})
+
 (defn- check-held
   "Fixture `f`'s held drop: cortex's centre of mass where MuJoCo's is,
-  within 5% of size `sz`, after 1 s and at the end."
+  within 5% of size `sz`, after 1 s and at the end; both at rest, for a
+  creature that `holds-its-pose`."
   [f sz cortex-held mj-held]
   (testing "held"
     (println (str f ", held: " (drop-figures "MuJoCo" (mj-held "heights") (mj-held "rest_speed"))
@@ -608,7 +614,12 @@
       (is (< (Math/abs (- (double (nth (mj-held "heights") i)) (nth (:heights cortex-held) i)))
              (* 0.05 sz))
           (str label ": centre of mass " (nth (mj-held "heights") i) " m up, cortex's "
-               (nth (:heights cortex-held) i) ", size " sz)))))
+               (nth (:heights cortex-held) i) ", size " sz)))
+    (when (holds-its-pose f)
+      (is (< (double (mj-held "rest_speed")) 0.1)
+          (str "MuJoCo's copy, held, still moving at " (mj-held "rest_speed") " m/s"))
+      (is (< (double (:rest-speed cortex-held)) 0.1)
+          (str "cortex's creature, held, still moving at " (:rest-speed cortex-held) " m/s")))))
 
 (defn- check-fixture
   [f plan cortex cortex-held {:strs [mujoco bodies drives drop urdf] mj-held "held"}]
