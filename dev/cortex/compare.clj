@@ -148,24 +148,33 @@
   [["floating, defaults" {:gravity [0 0 0]}]
    ["floating, 1 iteration, no projection" {:gravity [0 0 0] :solver {:iterations 1 :projection false}}]
    ["lying, defaults" {:floor {:height floor-z :friction 1.0}}]
+   ["lying, no projection" {:floor {:height floor-z :friction 1.0} :solver {:projection false}}]
    ["lying, 1 iteration, no projection" {:floor {:height floor-z :friction 1.0}
                                          :solver {:iterations 1 :projection false}}]])
 
+(def ^:private cost-humanoids
+  "The humanoids step-costs measures: the clipped one, and the one built
+  as MuJoCo's is."
+  ["test/fixtures/humanoid/humanoid.blend" "test/fixtures/strangers/humanoid.blend"])
+
 (defn step-costs
-  "Microseconds of CPU a step of the humanoid takes in each of
-  `cost-settings` (sleeping off; 1,000 steps, then 5,000 timed), the
-  median of `runs` interleaved runs: [[label us] ...]."
+  "Microseconds of CPU a step of each of `cost-humanoids` takes in each
+  of `cost-settings` (sleeping off; 1,000 steps, then 5,000 timed), the
+  median of `runs` interleaved runs: [[label us-clipped us-mujoco-shaped] ...]."
   [runs]
-  (let [one (fn [opts]
-              (let [c (body/body! ^Node (util/load-blender-model "test/fixtures/humanoid/humanoid.blend")
-                                  {:sleeping-thresholds [0 0]})
+  (let [one (fn [path opts]
+              (let [c (body/body! ^Node (util/load-blender-model path) {:sleeping-thresholds [0 0]})
                     s (sim/simulation c (assoc opts :observe #{}))]
                 (dotimes [_ 1000] (sim/step! s))
                 (let [t0 (cpu-ns)]
                   (dotimes [_ 5000] (sim/step! s))
                   (/ (- (cpu-ns) t0) 5000 1e3))))
-        timings (apply map vector (for [_ (range runs)] (mapv (comp one second) cost-settings)))]
-    (mapv (fn [[label] ts] [label (median ts)]) cost-settings timings)))
+        cases (for [path cost-humanoids [_ opts] cost-settings] [path opts])
+        timings (apply map vector (for [_ (range runs)] (mapv #(apply one %) cases)))
+        medians (vec (map median timings))
+        n (count cost-settings)]
+    (vec (for [[i [label]] (map-indexed vector cost-settings)]
+           [label (medians i) (medians (+ n i))]))))
 
 (def serve-cases
   "What `serve` drops: name -> [make floor height]. The humanoid built
@@ -238,8 +247,9 @@
     (= "serve" out) (do (serve) (shutdown-agents) (System/exit 0))
     (= "costs" out)
     (do (println cortex.engine/name "- microseconds a step of the humanoid, sleeping off:")
-        (doseq [[label us] (step-costs (Long/parseLong (or runs "3")))]
-          (println (format "%-40s %6.1f" label (double us))))
+        (println (format "%-40s %8s %14s" "" "clipped" "MuJoCo-shaped"))
+        (doseq [[label a b] (step-costs (Long/parseLong (or runs "3")))]
+          (println (format "%-40s %8.1f %14.1f" label (double a) (double b))))
         (shutdown-agents))
     :else
     (let [out (or out "out/bench/cortex-humanoid.json")
