@@ -5,7 +5,8 @@
   engine of this classpath: a step observing nothing in the first 5 s of
   a drop, and each observation alone (:joints, :segments, :touch, all
   three) of the creature 2 s into its drop; medians of five rounds."
-  (:require [cortex.blender]
+  (:require [cortex.bench :refer [median]]
+            [cortex.blender]
             [cortex.engine :as engine]
             [cortex.sim :as sim]
             [cortex.util :as util])
@@ -22,8 +23,6 @@
   (let [c0 (.getCurrentThreadCpuTime threads)]
     (dotimes [_ n] (f))
     (/ (- (.getCurrentThreadCpuTime threads) c0) 1e3 n)))
-
-(defn- median [xs] (let [v (vec (sort xs))] (v (quot (count v) 2))))
 
 (def creatures
   "The creatures measured: [name path]."

@@ -16,6 +16,18 @@
 
 (def ^:private creatures drops/pinned)
 
+(defn- hash-steps
+  "The SHA-256, in hex, of the text (step-text i) gives after each of
+  600 steps i of simulation `s` (step-text steps it), which is then
+  destroyed."
+  [s step-text]
+  (try
+    (let [d (MessageDigest/getInstance "SHA-256")]
+      (dotimes [i 600]
+        (.update d (.getBytes ^String (step-text i) "UTF-8")))
+      (apply str (map #(format "%02x" (bit-and 0xff (long %))) (.digest d))))
+    (finally (sim/destroy! s))))
+
 (defn drop-hash
   "The hash of creature `name`'s 10 s drop on the running engine: every
   segment's observation at every one of 600 steps, as text."
@@ -28,12 +40,7 @@
                                           :observe #{:segments}}))
             :physics-tab (sim/simulation (physics-tab/physics-body! (physics-tab/load-creature path))
                                          {:observe #{:segments}}))]
-    (try
-      (let [d (MessageDigest/getInstance "SHA-256")]
-        (dotimes [_ 600]
-          (.update d (.getBytes (pr-str (into (sorted-map) (:segments (sim/step! s)))) "UTF-8")))
-        (apply str (map #(format "%02x" (bit-and 0xff (long %))) (.digest d))))
-      (finally (sim/destroy! s)))))
+    (hash-steps s (fn [_] (pr-str (into (sorted-map) (:segments (sim/step! s))))))))
 
 (def ^:private observed
   "Drops pinned with everything observed (joints, segments and touch),
@@ -51,16 +58,11 @@
         act (into {} (for [[n m] (:muscles s)]
                        [n (if (= :hinge (:type m)) 0.3 [0.2 -0.1 0.3])]))
         sorted #(into (sorted-map) %)]
-    (try
-      (let [d (MessageDigest/getInstance "SHA-256")]
-        (dotimes [i 600]
-          (let [o (sim/step! s (when (odd? (quot i 60)) act))]
-            (.update d (.getBytes (pr-str [(sorted (:joints o)) (sorted (:segments o))
-                                           (sorted (for [[k v] (:touch o)]
-                                                     [k (update v :touching sort)]))])
-                                  "UTF-8"))))
-        (apply str (map #(format "%02x" (bit-and 0xff (long %))) (.digest d))))
-      (finally (sim/destroy! s)))))
+    (hash-steps s (fn [i]
+                    (let [o (sim/step! s (when (odd? (quot (long i) 60)) act))]
+                      (pr-str [(sorted (:joints o)) (sorted (:segments o))
+                               (sorted (for [[k v] (:touch o)]
+                                         [k (update v :touching sort)]))]))))))
 
 (deftest drops-keep-their-hashes
   (let [f (io/file hashes-file)

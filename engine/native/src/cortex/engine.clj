@@ -624,19 +624,21 @@
   [^PhysicsSpace space touch-distance wanted? f init]
   (let [d (double touch-distance)]
     (reduce (fn [acc ^long m]
-              (let [n (PersistentManifolds/countPoints m)
-                    b0 (when (pos? n) (PhysicsCollisionObject/findInstance (PersistentManifolds/getBodyAId m)))
-                    b1 (when (pos? n) (PhysicsCollisionObject/findInstance (PersistentManifolds/getBodyBId m)))]
-                (if (and (pos? n) (or (wanted? b0) (wanted? b1)))
-                  (let [[touching? impulse]
-                        (loop [i 0 touching? false impulse 0.0]
-                          (if (< i n)
-                            (let [p (PersistentManifolds/getPointId m i)
-                                  dist (double (ManifoldPoints/getDistance1 p))
-                                  imp (double (ManifoldPoints/getAppliedImpulse p))]
-                              (recur (inc i) (or touching? (<= dist d) (pos? imp)) (+ impulse imp)))
-                            [touching? impulse]))]
-                    (f acc b0 b1 touching? impulse))
-                  acc)))
+              (let [n (PersistentManifolds/countPoints m)]
+                (if (zero? n)
+                  acc
+                  (let [b0 (PhysicsCollisionObject/findInstance (PersistentManifolds/getBodyAId m))
+                        b1 (PhysicsCollisionObject/findInstance (PersistentManifolds/getBodyBId m))]
+                    (if (or (wanted? b0) (wanted? b1))
+                      (let [[touching? impulse]
+                            (loop [i 0 touching? false impulse 0.0]
+                              (if (< i n)
+                                (let [p (PersistentManifolds/getPointId m i)
+                                      dist (double (ManifoldPoints/getDistance1 p))
+                                      imp (double (ManifoldPoints/getAppliedImpulse p))]
+                                  (recur (inc i) (or touching? (<= dist d) (pos? imp)) (+ impulse imp)))
+                                [touching? impulse]))]
+                        (f acc b0 b1 touching? impulse))
+                      acc)))))
             init
             (.listManifoldIds space))))
