@@ -20,7 +20,8 @@ constraint's frame, columns its X, Y, Z), "limits": [[lo, hi] or null] x 3
 (Bullet's angles)}] or absent, "loops": [{"name", "segments": [a, b],
 "points": [[x, y, z], ...] (Z-up world: where the two bodies are held
 together), "weld": true or false}] or absent, "track": [seconds, ...] or
-absent}]}.
+absent, "compile_only": true or absent (then only "mujoco", "bodies" and
+the URDF's check and masses are measured: nothing is simulated)}]}.
 
 OUT.json, by fixture name:
 - "mujoco": {"error": text or null, "warnings": [text]}.
@@ -297,7 +298,7 @@ def track(path, times):
     return out
 
 
-def urdf(fixture):
+def urdf(fixture, drop=True):
     path = fixture["urdf"]
     out = {}
     tool = shutil.which("check_urdf")
@@ -314,7 +315,7 @@ def urdf(fixture):
         # PyBullet's multibodies (Featherstone) at cortex's 1/60 s throw the
         # four-legged creature about on landing; four substeps hold it
         pb.setPhysicsEngineParameter(numSubSteps=4, physicsClientId=c)
-        base = fixture["base"]
+        base = fixture.get("base", {"pos": [0, 0, 0], "quat": [0, 0, 0, 1]})
         flags = pb.URDF_USE_INERTIA_FROM_FILE | pb.URDF_USE_SELF_COLLISION
         body = pb.loadURDF(path, base["pos"], base["quat"], flags=flags, physicsClientId=c)
         names = {-1: pb.getBodyInfo(body, physicsClientId=c)[0].decode()}
@@ -322,6 +323,8 @@ def urdf(fixture):
             names[i] = pb.getJointInfo(body, i, physicsClientId=c)[12].decode()
         index = {n: i for i, n in names.items()}
         out["masses"] = {n: pb.getDynamicsInfo(body, i, physicsClientId=c)[0] for i, n in names.items()}
+        if not drop:
+            return out
         for a, b in fixture["pairs"]:
             pb.setCollisionFilterPair(body, body, index[a], index[b], 0, physicsClientId=c)
         # the joints move freely (PyBullet's default velocity motors off)
@@ -387,7 +390,9 @@ def main():
         r = {}
         m, err, warnings = load(f["mjcf"])
         r["mujoco"] = {"error": err, "warnings": warnings, "version": mujoco.__version__}
-        if m is not None:
+        if m is not None and f.get("compile_only"):
+            r["bodies"] = bodies(m)
+        elif m is not None:
             r["bodies"] = bodies(m)
             r["drives"] = drives(m, f)
             m2, _, _ = load(f["mjcf"])
@@ -403,7 +408,7 @@ def main():
             if f.get("camera"):
                 r["render"] = render(m2, f["camera"])
         if f.get("urdf"):
-            r["urdf"] = urdf(f)
+            r["urdf"] = urdf(f, drop=not f.get("compile_only"))
         result[f["name"]] = r
     with open(sys.argv[2], "w") as fh:
         json.dump(result, fh)

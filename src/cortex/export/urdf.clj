@@ -29,10 +29,23 @@
      :mesh [:mesh {:filename (:file (meshes [id k]))}]
      :box [:box {:size (v* 2 half-extents)}]
      :sphere [:sphere {:radius radius}]
-     :capsule [:capsule {:radius radius :length height}]
      :cylinder (let [k (or axis 1)]
                  [:cylinder {:radius (nth half-extents (if (zero? k) 1 0))
                              :length (* 2 (double (nth half-extents k)))}]))])
+
+(defn- urdf-solids
+  "The pieces URDF is given for `piece`: a capsule as its cylinder and
+  the spheres at its two ends; any other piece as it is."
+  [{:keys [type radius height axis pos rot] :as piece}]
+  (if (= type :capsule)
+    (let [k (long (or axis 1))
+          h (/ (double height) 2)
+          end (fn [sign] (v+ pos (mv rot (assoc [0.0 0.0 0.0] k (* sign h)))))]
+      [{:type :cylinder :axis k :pos pos :rot rot
+        :half-extents (assoc [(double radius) (double radius) (double radius)] k h)}
+       {:type :sphere :radius radius :pos (end 1.0) :rot rot}
+       {:type :sphere :radius radius :pos (end -1.0) :rot rot}])
+    [piece]))
 
 (defn- urdf-link
   "The <link> of segment `info` whose frame is `frame` [o F]."
@@ -43,12 +56,13 @@
     [:mass {:value (double mass)}]
     (let [[a b c] moments]
       [:inertia {:ixx a :ixy 0.0 :ixz 0.0 :iyy b :iyz 0.0 :izz c}])]
-   (for [[k {:keys [type] :as piece}] (map-indexed vector (pieces shape))
+   (for [[k whole] (map-indexed vector (pieces shape))
+         {:keys [type] :as piece} (urdf-solids whole)
          tag [:visual :collision]]
      (let [placed (if (= type :mesh)
                     [(:pos piece) identity3]
                     [(:pos piece) (mm (:rot piece)
-                                      (if (#{:capsule :cylinder} type) (axis-turn (:axis piece)) identity3))])
+                                      (if (= :cylinder type) (axis-turn (:axis piece)) identity3))])
            [pp pr] placed]
        ;; a mesh's points are already Z up; a primitive's own axes are
        ;; the segment's (jME's), turned to Z up by C, as the MJCF's geoms are
