@@ -42,7 +42,8 @@ OUT.json, by fixture name:
   of two, so each geom's own friction rules), actuation off (limp, as
   cortex's creature is when its muscles are sent nothing), "seconds" long,
   read every 1/60 s (cortex's step; MuJoCo's own is the MJCF's): the centre of
-  mass height every step, and the fastest body speed over the last 0.5 s.
+  mass height every step, the fastest body speed over the last 0.5 s, and
+  "warnings": what MuJoCo warned of while simulating ({warning: times}).
 - "held" (where the fixture asks, "held": true): the same drop with
   actuation on and every control 0, so that each position servo holds
   its joint at 0, the pose as built (a point joint's motors push nothing).
@@ -175,6 +176,13 @@ def drives(m, fixture):
     return out
 
 
+def sim_warnings(d):
+    """What MuJoCo warned of while simulating `d` (too many contacts or
+    constraints, an unstable step, a bad inertia): {warning: times}."""
+    return {mujoco.mjtWarning(i).name: int(d.warning[i].number)
+            for i in range(len(d.warning)) if d.warning[i].number > 0}
+
+
 def mj_drop(path, seconds, held=False):
     floored = add_floor(path, 0)
     m, err, _ = load(floored)
@@ -203,7 +211,7 @@ def mj_drop(path, seconds, held=False):
         speeds.append(float(np.linalg.norm(d.xipos[1:] - prev[1:], axis=1).max() / frame))
         prev[:] = d.xipos
     return {"heights": heights, "rest_speed": max(speeds[-30:]), "step": m.opt.timestep,
-            "frame": frame}
+            "frame": frame, "warnings": sim_warnings(d)}
 
 
 def tab_limits(path, fixture):

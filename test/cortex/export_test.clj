@@ -435,6 +435,7 @@
             (is (< (Math/abs (- (double (nth (mj-drop "heights") i)) (nth heights i))) (* 0.05 size))
                 (str label ": MuJoCo's centre of mass " (nth (mj-drop "heights") i) " m up, cortex's "
                      (nth heights i) ", size " size)))
+          (is (= {} (mj-drop "warnings")) "MuJoCo warned during the drop")
           (doseq [[n past] tab_limits
                   :when (not= n "ring")]
             (is (every? #(< % 0.05) past) (str n " past its limits by " past)))
@@ -674,6 +675,8 @@
   [f plan cortex cortex-held {:strs [mujoco bodies drives drop urdf] mj-held "held"}]
   (testing f
     (check-bodies plan mujoco bodies)
+    (doseq [[what {w "warnings"}] [["limp" drop] ["held" mj-held]]]
+      (is (= {} w) (str "MuJoCo warned during the " what " drop")))
     (let [sz (size plan)
           dofs (ex/joint-dofs plan)]
       (doseq [{:strs [joint dof end angles]} drives
