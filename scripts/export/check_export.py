@@ -8,7 +8,8 @@ A Python script, outside cortex's Clojure code; cortex's test
 fixture, and asserts on OUT.json.  The script measures, it does not
 judge: every figure it reports is compared with cortex's by the test.
 
-MANIFEST.json: {"fixtures": [{"name", "mjcf" (path), "urdf" (path or null),
+MANIFEST.json: {"fixtures": [{"name", "mjcf" (path), "mjcf_inscribed" (path
+or absent), "urdf" (path or null),
 "seconds" (drop length), "joints": [{"name", "type", "segments": [a, b],
 "axis" (hinge: Z-up world), "frame" (cone: 3x3 rows, Z-up world, columns the
 engine's axes), "dofs": [{"joint" (MuJoCo joint), "actuator", "range"}]}],
@@ -47,6 +48,8 @@ OUT.json, by fixture name:
 - "held" (where the fixture asks, "held": true): the same drop with
   actuation on and every control 0, so that each position servo holds
   its joint at 0, the pose as built (a point joint's motors push nothing).
+- "held_inscribed" (where the fixture gives "mjcf_inscribed", the same
+  creature written with :cone-strength :inscribed): its held drop.
 - "urdf": check_urdf's exit code and output; PyBullet's link masses; and the
   same drop in PyBullet (1/60 s step in four substeps, floor friction 1:
   Bullet multiplies).
@@ -407,6 +410,8 @@ def main():
             r["drop"] = mj_drop(f["mjcf"], f["seconds"])
             if f.get("held"):
                 r["held"] = mj_drop(f["mjcf"], f["seconds"], held=True)
+            if f.get("mjcf_inscribed"):
+                r["held_inscribed"] = mj_drop(f["mjcf_inscribed"], f["seconds"], held=True)
             if f.get("track"):
                 r["track"] = track(f["mjcf"], f["track"])
             if f.get("tab_limits"):

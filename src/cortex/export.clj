@@ -146,9 +146,17 @@
 
 (defn- marker-mjcf
   "The MJCF document of `plan`, a creature of cortex's own segments and
-  joints, hung from `root` (nil: the heaviest segment)."
-  [plan root]
-  (let [infos (into {} (map (juxt :id segment-info)) (:segments plan))
+  joints, hung from `root` (nil: the heaviest segment), a cone's or point
+  joint's strength shared among its three actuators as `cone-strength`
+  says (see `mjcf`)."
+  [plan root cone-strength]
+  (let [share (case cone-strength
+                (nil :per-axis) double
+                :inscribed #(/ (double %) (Math/sqrt 3.0))
+                (throw (ex-info (str "cortex.export/mjcf: :cone-strength " (pr-str cone-strength)
+                                     " is neither :per-axis nor :inscribed")
+                                {:cone-strength cone-strength})))
+        infos (into {} (map (juxt :id segment-info)) (:segments plan))
         {:keys [roots children joint] :as t} (tree plan root)
         all-dofs (plan-dofs plan t)
         meshes (mesh-files plan)
@@ -190,11 +198,12 @@
                       :gear (concat (local-vector (infos (child-of name))
                                                   (z-up (mv (quat->matrix rotation) (blender->jme b))))
                                     [0 0 0])
-                      :ctrlrange [(- strength) strength]}])
-           [:position {:name (str "muscle/" dof) :joint dof
-                       :kp (if frame-axis (nth kp frame-axis) kp)
-                       :kv (if frame-axis (nth kd frame-axis) kd)
-                       :forcerange [(- strength) strength]}]))]
+                      :ctrlrange [(- (share strength)) (share strength)]}])
+           (let [f (if frame-axis (share strength) strength)]
+             [:position {:name (str "muscle/" dof) :joint dof
+                         :kp (if frame-axis (nth kp frame-axis) kp)
+                         :kv (if frame-axis (nth kd frame-axis) kd)
+                         :forcerange [(- f) f]}])))]
       [:sensor
        (for [{:keys [name]} (:joints plan)
              {dof :name :keys [ball]} (all-dofs name)]
@@ -210,13 +219,17 @@
   "The MJCF document (a string) of `plan` (see cortex.plan; or a creature,
   see `plan-of`), its meshes named by file (see `meshes`, written beside
   it). `opts`: :root, the segment to hang the rest from (default the
-  heaviest). A Physics-tab creature's is `tab-mjcf`'s."
+  heaviest); :cone-strength, how a cone's or point joint's strength
+  bounds its three actuators: :per-axis (default) each by the strength,
+  :inscribed each by the strength over sqrt 3, never more than cortex's
+  bound on the whole torque (see the chapter). A Physics-tab creature's
+  is `tab-mjcf`'s."
   ([plan] (mjcf plan {}))
-  ([x {:keys [root]}]
+  ([x {:keys [root cone-strength]}]
    (let [plan (plan-of x)]
      (if (model/physics-tab? plan)
        (tab-mjcf plan {:root root})
-       (marker-mjcf plan root)))))
+       (marker-mjcf plan root cone-strength)))))
 
 (defn ^:api write!
   "Write `plan` as MJCF to `mjcf-path` and/or URDF to `urdf-path` (nil

@@ -134,6 +134,9 @@
    [nil "--report" "with a FILE.blend: print what body! builds of it, and stop"]
    [nil "--mjcf OUT.xml" "with a FILE.blend: write it as MuJoCo's MJCF, meshes beside it, and stop (see org/export.org)"]
    [nil "--urdf OUT.urdf" "with a FILE.blend: write it as URDF, meshes beside it, and stop (with --mjcf too)"]
+   [nil "--cone-strength HOW" "with --mjcf: per-axis (default) bounds each of a cone's three servos by its strength, inscribed by strength / sqrt 3"
+    :parse-fn keyword
+    :validate [#{:per-axis :inscribed} "must be per-axis or inscribed"]]
    [nil "--eyes" "record what the creature's eyes see under the world (the worm with eyes unless a FILE is given)"]
    ["-h" "--help" "say how to use lein run"]])
 
@@ -150,6 +153,7 @@
                   "Options:"
                   summary]))
 
+
 (defn plan
   "What lein run should do, given its `args` and whether there is a
   `display?`: a map with :action :help, :error (with :message), :report
@@ -159,7 +163,8 @@
   a file, :file."
   [args display?]
   (let [{:keys [options errors summary arguments]} (cli/parse-opts args cli-options)
-        {:keys [creature seconds out resolution headless window help report eyes mjcf urdf]} options
+        {:keys [creature seconds out resolution headless window help report eyes mjcf urdf
+                cone-strength]} options
         [file & extra] arguments
         creature (cond file (str/replace (.getName (io/file file)) #"\.blend$" "")
                        (and eyes (= creature "worm")) "worm-eyes"
@@ -171,7 +176,9 @@
       (and report (not file)) {:action :error :message "--report needs a FILE.blend"}
       report {:action :report :file file}
       (and (or mjcf urdf) (not file)) {:action :error :message "--mjcf and --urdf need a FILE.blend"}
-      (or mjcf urdf) {:action :export :file file :mjcf mjcf :urdf urdf}
+      (and cone-strength (not mjcf)) {:action :error :message "--cone-strength goes with --mjcf"}
+      (or mjcf urdf) (cond-> {:action :export :file file :mjcf mjcf :urdf urdf}
+                       cone-strength (assoc :cone-strength cone-strength))
       (and headless window) {:action :error :message "--headless and --window contradict each other"}
       (and window (not display?))
       {:action :error
@@ -302,7 +309,8 @@
                    :report (do (println (report-text (body/report (body/body! (blender/load-blender-model (:file p)) {:strict? false})))) 0)
                    :export (do (doseq [f (export/write! (cortex.plan/plan (blender/load-blender-model (:file p))
                                                                            {:strict? false})
-                                                        (:mjcf p) (:urdf p))]
+                                                        (:mjcf p) (:urdf p)
+                                                        (select-keys p [:cone-strength]))]
                                  (println "wrote" f))
                                0)
                    :window (do (show-window! p) 0)

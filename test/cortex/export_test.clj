@@ -118,11 +118,13 @@
                {:name (str "j" k) :type :hinge :segments [a b] :pivot [(+ k 0.5) 1.0 0.0]
                 :rotation [0 0 0 1] :description {:limit [-0.5 0.5] :axis [0 0 1]}})}))
 
-(defn- geoms
-  "The <geom .../> elements of `doc`: [{attribute value}]."
-  [doc]
-  (for [[_ attrs] (re-seq #"<geom ([^>]*)/>" doc)]
+(defn- elements
+  "The <`tag` .../> elements of `doc`: [{attribute value}]."
+  [tag doc]
+  (for [[_ attrs] (re-seq (re-pattern (str "<" tag " ([^>]*)/>")) doc)]
     (into {} (for [[_ k v] (re-seq #"(\w+)=\"([^\"]*)\"" attrs)] [k v]))))
+
+(def ^:private geoms (partial elements "geom"))
 
 (deftest primitives-are-exported-as-primitives
   (let [doc (ex/mjcf primitive-plan)
@@ -170,6 +172,36 @@
         (is (= "0 6 0.0 0.0 1.0 1.0 0.0 0.0" (str/trim out))
             "no warning, six geoms, the capsule along Z, the cylinder along X"))
       (skip "cortex.export-test/primitives-are-exported-as-primitives, in MuJoCo"))))
+
+(deftest a-cone-s-strength-per-axis-or-inscribed
+  (doseq [f ["humanoid" "quadruped"]
+          :let [[_ p] (placed f)
+                ms (ex/muscles p)
+                kind (into {} (map (juxt :name :type)) (:joints p))
+                joint-of (into {} (for [[j {ds :dofs}] (ex/joint-dofs p)
+                                        {d :name} (when (sequential? ds) ds)]
+                                    [(str "muscle/" d) j]))
+                bounds (fn [opts]
+                         (let [doc (ex/mjcf p opts)]
+                           (concat (for [a (elements "position" doc)]
+                                     [(joint-of (a "name")) (a "forcerange")])
+                                   (for [a (elements "motor" doc)]
+                                     [(joint-of (str/replace (a "name") #"/[xyz]$" "")) (a "ctrlrange")]))))]]
+    (testing f
+      (is (some #{:cone} (vals kind)) "the fixture has cones")
+      (doseq [[opts scale] [[{} 1.0] [{:cone-strength :per-axis} 1.0]
+                            [{:cone-strength :inscribed} (/ 1.0 (Math/sqrt 3.0))]]
+              :let [bs (bounds opts)]]
+        (is (= (set (keys ms)) (set (map first bs))) "every muscle has its actuators, each its joint's")
+        (doseq [[j range] bs
+                :let [s (:strength (ms j))
+                      want (if (= :hinge (kind j)) s (* scale s))
+                      [lo hi] (map #(Double/parseDouble %) (str/split range #" "))]]
+          (is (and (close? hi want 1e-9) (close? lo (- want) 1e-9))
+              (str f " " j " " opts ": " range ", want +-" want)))))
+    (is (re-find #":cone-strength :equal"
+                 (try (ex/mjcf p {:cone-strength :equal}) ""
+                      (catch clojure.lang.ExceptionInfo e (ex-message e)))))))
 
 (def tab-fixtures
   "The Physics-tab creatures exported and checked, by name."
@@ -562,12 +594,14 @@
   "What check_export.py needs of fixture `f`, written into `dir`."
   [f plan dir]
   (let [mj (str (io/file dir (str f ".xml")))
+        inscribed (str (io/file dir (str f "-inscribed.xml")))
         urdf (str (io/file dir (str f ".urdf")))
         dofs (ex/joint-dofs plan)
         {:keys [roots]} (ex/tree plan)
         root (first (filter #(= (first roots) (:id %)) (:segments plan)))]
     (ex/write! plan mj urdf)
-    {:name f :mjcf mj :urdf urdf :seconds seconds :held true
+    (ex/write! plan inscribed nil {:cone-strength :inscribed})
+    {:name f :mjcf mj :mjcf_inscribed inscribed :urdf urdf :seconds seconds :held true
      :pairs (map :segments (:joints plan))
      :base {:link (:id root) :pos (geo/z-up (:position root))
             :quat (geo/matrix->quat (z-up-rotation (geo/quat->matrix (:rotation root))))}
@@ -613,6 +647,12 @@
   to rest (see the text)."
   #{"worm" "hand"})
 
+(def ^:private inscribed-rests
+  "The fixtures whose inscribed MuJoCo copy, held, comes to rest: those
+  that hold their pose, and the humanoid, whose cones can no longer
+  rock it (see the text)."
+  (conj holds-its-pose "humanoid"))
+
 (def ^:private jolts
   "[engine fixture]: a held drop whose rest is printed, not asserted,
   on that engine (see the text: jBullet's held hand's fingertips jolt)."
@@ -620,17 +660,25 @@
 
 (defn- check-held
   "Fixture `f`'s held drop: cortex's centre of mass where MuJoCo's is,
-  within 5% of size `sz`, after 1 s and at the end; both at rest, for a
-  creature that `holds-its-pose`."
-  [f sz cortex-held mj-held]
+  within 5% of size `sz`, after 1 s and at the end, for both of MuJoCo's
+  copies (`mj-held`, each cone servo bounded by the strength;
+  `mj-inscribed`, by the strength over sqrt 3); MuJoCo's inscribed copy
+  at rest where it `inscribed-rests`, and every copy where the creature
+  `holds-its-pose`."
+  [f sz cortex-held mj-held mj-inscribed]
   (testing "held"
-    (println (str f ", held: " (drop-figures "MuJoCo" (mj-held "heights") (mj-held "rest_speed"))
-                  "; " (drop-figures "cortex" (:heights cortex-held) (:rest-speed cortex-held))))
-    (doseq [[label i] [["after 1 s" 59] ["at the end" (dec (count (mj-held "heights")))]]]
-      (is (< (Math/abs (- (double (nth (mj-held "heights") i)) (nth (:heights cortex-held) i)))
-             (* 0.05 sz))
-          (str label ": centre of mass " (nth (mj-held "heights") i) " m up, cortex's "
-               (nth (:heights cortex-held) i) ", size " sz)))
+    (doseq [[who mj] [["MuJoCo" mj-held] ["MuJoCo, inscribed" mj-inscribed]]]
+      (println (str f ", held: " (drop-figures who (mj "heights") (mj "rest_speed"))
+                    "; " (drop-figures "cortex" (:heights cortex-held) (:rest-speed cortex-held))))
+      (is (= {} (mj "warnings")) (str who " warned during the held drop"))
+      (doseq [[label i] [["after 1 s" 59] ["at the end" (dec (count (mj "heights")))]]]
+        (is (< (Math/abs (- (double (nth (mj "heights") i)) (nth (:heights cortex-held) i)))
+               (* 0.05 sz))
+            (str who ", " label ": centre of mass " (nth (mj "heights") i) " m up, cortex's "
+                 (nth (:heights cortex-held) i) ", size " sz))))
+    (when (inscribed-rests f)
+      (is (< (double (mj-inscribed "rest_speed")) 0.1)
+          (str "MuJoCo's inscribed copy, held, still moving at " (mj-inscribed "rest_speed") " m/s")))
     (when (holds-its-pose f)
       (is (< (double (mj-held "rest_speed")) 0.1)
           (str "MuJoCo's copy, held, still moving at " (mj-held "rest_speed") " m/s"))
@@ -672,11 +720,11 @@
     (is (close? (get-in urdf ["masses" id]) mass 1e-6) id)))
 
 (defn- check-fixture
-  [f plan cortex cortex-held {:strs [mujoco bodies drives drop urdf] mj-held "held"}]
+  [f plan cortex cortex-held {:strs [mujoco bodies drives drop urdf] mj-held "held"
+                              mj-inscribed "held_inscribed"}]
   (testing f
     (check-bodies plan mujoco bodies)
-    (doseq [[what {w "warnings"}] [["limp" drop] ["held" mj-held]]]
-      (is (= {} w) (str "MuJoCo warned during the " what " drop")))
+    (is (= {} (get drop "warnings")) "MuJoCo warned during the limp drop")
     (let [sz (size plan)
           dofs (ex/joint-dofs plan)]
       (doseq [{:strs [joint dof end angles]} drives
@@ -700,7 +748,7 @@
             (is (< rest_speed 0.1) (str "still moving at " rest_speed " m/s")))))
       (when (and (settles-alike f) (not (limp-by-chance [engine/name f])))
         (is (< (:rest-speed cortex) 0.1) (str "cortex still moving at " (:rest-speed cortex))))
-      (check-held f sz cortex-held mj-held)
+      (check-held f sz cortex-held mj-held mj-inscribed)
       (check-urdf plan urdf))))
 
 (deftest mujoco-and-pybullet-agree-with-cortex

@@ -44,6 +44,7 @@
         (is (re-find pattern (:message p)) (pr-str args))))
     (is (re-find #"no display" (:message (main/plan ["--window"] false))))))
 
+
 (deftest creatures-from-files
   (testing "a .blend file on the command line"
     (is (= {:action :offscreen :creature "quadruped" :file "test/fixtures/designer/quadruped.blend"
@@ -51,6 +52,14 @@
            (main/plan ["test/fixtures/designer/quadruped.blend" "-s" "2"] false)))
     (is (= {:action :report :file "q.blend"} (main/plan ["q.blend" "--report"] false)))
     (is (re-find #"needs a FILE" (:message (main/plan ["--report"] false))))
+    (is (= {:action :export :file "q.blend" :mjcf "q.xml" :urdf nil}
+           (main/plan ["q.blend" "--mjcf" "q.xml"] false)))
+    (is (= {:action :export :file "q.blend" :mjcf "q.xml" :urdf "q.urdf" :cone-strength :inscribed}
+           (main/plan ["q.blend" "--mjcf" "q.xml" "--urdf" "q.urdf" "--cone-strength" "inscribed"] false)))
+    (is (re-find #"per-axis or inscribed"
+                 (:message (main/plan ["q.blend" "--mjcf" "q.xml" "--cone-strength" "equal"] false))))
+    (is (re-find #"goes with --mjcf"
+                 (:message (main/plan ["q.blend" "--urdf" "q.urdf" "--cone-strength" "inscribed"] false))))
     (is (re-find #"one creature file at a time" (:message (main/plan ["a.blend" "b.blend"] false)))))
   (testing "the report as tables"
     (let [c (body/body! (util/load-blender-model "test/fixtures/designer/quadruped.blend"))
