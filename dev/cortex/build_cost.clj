@@ -3,7 +3,8 @@
   "lein run -m cortex.build-cost: physical! and body! of the hand and of
   chains of 100, 300 and 1000 segments, each on a fresh creature, as
   medians of wall ms, this thread's CPU ms and the MB it allocated."
-  (:require [cortex.bench.creatures :as creatures]
+  (:require [cortex.bench :refer [median]]
+            [cortex.bench.creatures :as creatures]
             [cortex.blender]
             [cortex.body :as body]
             [cortex.engine :as engine]
@@ -31,7 +32,6 @@
         a1 (.getThreadAllocatedBytes threads id)]
     [(/ (- t1 t0) 1e6) (/ (- c1 c0) 1e6) (/ (- a1 a0) 1e6)]))
 
-(defn- median [xs] (let [v (vec (sort xs))] (v (quot (count v) 2))))
 
 (def creatures
   "The creatures measured: [name make], make making a fresh one."

@@ -9,6 +9,7 @@
   `step-costs` (where a step's time goes), `json`."
   (:require [clojure.java.io :as io]
             [clojure.string :as str]
+            [cortex.bench :refer [median]]
             [cortex.body :as body]
             [cortex.engine]
             [cortex.render :as render]
@@ -89,7 +90,6 @@
     (io/copy (io/file dir "frame-000003.png") (io/file file))
     file))
 
-(defn- median [xs] (nth (sort xs) (quot (count xs) 2)))
 
 (defn- humanoid [] (util/load-blender-model "test/fixtures/humanoid/humanoid.blend"))
 

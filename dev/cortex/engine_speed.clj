@@ -8,6 +8,7 @@
     lein engines                               all three, jBullet then native"
   (:require [clojure.edn :as edn]
             [clojure.java.io :as io]
+            [cortex.bench :refer [median]]
             [cortex.bench.creatures :as creatures]
             [cortex.body :as body]
             [cortex.engine :as engine]
@@ -25,7 +26,6 @@
    "chain-100" [#(creatures/creature (creatures/chain 100) 1.5) 60]
    "chain-300" [#(creatures/creature (creatures/chain 300) 1.5) 30]})
 
-(defn- median [xs] (nth (sort xs) (quot (count xs) 2)))
 
 (defn build-ms
   "Median milliseconds of `body!` on a fresh creature from `make`, over
