@@ -9,7 +9,6 @@
   `step-costs` (where a step's time goes), `json`."
   (:require [clojure.java.io :as io]
             [clojure.string :as str]
-            [cortex.bench :refer [median]]
             [cortex.body :as body]
             [cortex.engine]
             [cortex.render :as render]
@@ -90,6 +89,12 @@
     (io/copy (io/file dir "frame-000003.png") (io/file file))
     file))
 
+
+(defn- median
+  "The middle of `xs` (the upper of the two for an even count): this
+  chapter comes before the benchmark chapter's cortex.bench/median."
+  [xs]
+  (nth (sort xs) (quot (count xs) 2)))
 
 (defn- humanoid [] (util/load-blender-model "test/fixtures/humanoid/humanoid.blend"))
 
