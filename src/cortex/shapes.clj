@@ -540,6 +540,26 @@
          (:sphere :capsule) (:radius shape)
          :compound 0.0))))
 
+(def prism-sides
+  "The sides of the prism a small cylinder becomes on native Bullet."
+  16)
+
+(defn- prism-points
+  "The corners of a prism of `prism-sides` sides round the axis of the
+  cylinder `shape`, drawn in by `m`: [[x y z] ...]."
+  [{:keys [half-extents axis]} m]
+  (let [k (long (or axis 1))
+        [i j] (remove #{k} [0 1 2])
+        r (- (double (nth half-extents i)) m)
+        h (- (double (nth half-extents k)) m)]
+    (for [n (range prism-sides)
+          end [-1.0 1.0]
+          :let [t (/ (* 2 Math/PI n) prism-sides)]]
+      (-> [0.0 0.0 0.0]
+          (assoc k (* end h))
+          (assoc i (* r (Math/cos t)))
+          (assoc j (* r (Math/sin t)))))))
+
 (defn- vec3 ^Vector3f [[x y z]] (Vector3f. (float x) (float y) (float z)))
 
 (defn- matrix
@@ -570,8 +590,14 @@
                  (.setMargin (float m))))
              (doto (BoxCollisionShape. (vec3 (:half-extents shape)))
                (.setMargin (float (margin shape)))))
-      :cylinder (doto (CylinderCollisionShape. (vec3 (:half-extents shape)) (int (:axis shape 1)))
-                  (.setMargin (float (margin shape))))
+      :cylinder (let [m (margin shape)]
+                  (if (and (= :native engine/name)
+                           (< (* 2.0 (double (apply min (:half-extents shape)))) (double engine/thin)))
+                    ;; a small cylinder on native Bullet: a prism's hull (see above)
+                    (doto (HullCollisionShape. (float-array (mapcat identity (prism-points shape m))))
+                      (.setMargin (float m)))
+                    (doto (CylinderCollisionShape. (vec3 (:half-extents shape)) (int (:axis shape 1)))
+                      (.setMargin (float m)))))
       :sphere (SphereCollisionShape. (float (:radius shape)))
       :capsule (let [c (CapsuleCollisionShape. (float (:radius shape)) (float (:height shape))
                                                (int (:axis shape 1)))]
