@@ -9,7 +9,7 @@ fixture, and asserts on OUT.json.  The script measures, it does not
 judge: every figure it reports is compared with cortex's by the test.
 
 MANIFEST.json: {"fixtures": [{"name", "mjcf" (path), "mjcf_inscribed" (path
-or absent), "urdf" (path or null),
+or absent), "mjx_seconds" (or absent), "urdf" (path or null),
 "seconds" (drop length), "joints": [{"name", "type", "segments": [a, b],
 "axis" (hinge: Z-up world), "frame" (cone: 3x3 rows, Z-up world, columns the
 engine's axes), "dofs": [{"joint" (MuJoCo joint), "actuator", "range"}]}],
@@ -22,7 +22,8 @@ constraint's frame, columns its X, Y, Z), "limits": [[lo, hi] or null] x 3
 "points": [[x, y, z], ...] (Z-up world: where the two bodies are held
 together), "weld": true or false}] or absent, "track": [seconds, ...] or
 absent, "compile_only": true or absent (then only "mujoco", "bodies" and
-the URDF's check and masses are measured: nothing is simulated)}]}.
+the URDF's check and masses are measured, and where "mjx_seconds" is
+given, "held" and "mjx" that long: nothing else is simulated)}]}.
 
 OUT.json, by fixture name:
 - "mujoco": {"error": text or null, "warnings": [text]}.
@@ -50,6 +51,9 @@ OUT.json, by fixture name:
   its joint at 0, the pose as built (a point joint's motors push nothing).
 - "held_inscribed" (where the fixture gives "mjcf_inscribed", the same
   creature written with :cone-strength :inscribed): its held drop.
+- "mjx" (where the fixture gives "mjx_seconds"): the held drop's first
+  "mjx_seconds" in MJX, MuJoCo's JAX port, on the CPU: {"heights", "jax"},
+  {"error": what mjx.put_model or the compiler said}, or {"skipped": why}.
 - "urdf": check_urdf's exit code and output; PyBullet's link masses; and the
   same drop in PyBullet (1/60 s step in four substeps, floor friction 1:
   Bullet multiplies).
@@ -215,6 +219,39 @@ def mj_drop(path, seconds, held=False):
         prev[:] = d.xipos
     return {"heights": heights, "rest_speed": max(speeds[-30:]), "step": m.opt.timestep,
             "frame": frame, "warnings": sim_warnings(d)}
+
+
+def mjx_held(path, seconds):
+    """The held drop (as mj_drop's) in MJX, MuJoCo's JAX port, on the CPU:
+    whether mjx.put_model takes the model, and the centre of mass height
+    every 1/60 s; {"skipped": why} where MJX or JAX is not installed."""
+    try:
+        from mujoco import mjx
+        import jax
+    except ImportError as e:
+        return {"skipped": f"MJX is not installed ({e})"}
+    floored = add_floor(path, 0)
+    m, err, _ = load(floored)
+    os.remove(floored)
+    if m is None:
+        return {"error": err}
+    try:
+        mx = mjx.put_model(m)
+    except Exception as e:  # what MJX does not support, by name
+        return {"error": str(e)}
+    d = mujoco.MjData(m)
+    mujoco.mj_forward(m, d)
+    dx = mjx.put_data(m, d)
+    step = jax.jit(mjx.step)
+    mass = m.body_mass[1:]
+    sub = max(1, int(round((1 / 60) / m.opt.timestep)))
+    heights = []
+    for _ in range(int(round(seconds * 60))):
+        for _ in range(sub):
+            dx = step(mx, dx)
+        xi = np.asarray(dx.xipos)
+        heights.append(float((mass * xi[1:, 2]).sum() / mass.sum()))
+    return {"heights": heights, "jax": jax.__version__}
 
 
 def tab_limits(path, fixture):
@@ -403,6 +440,9 @@ def main():
         r["mujoco"] = {"error": err, "warnings": warnings, "version": mujoco.__version__}
         if m is not None and f.get("compile_only"):
             r["bodies"] = bodies(m)
+            if f.get("mjx_seconds"):
+                r["held"] = mj_drop(f["mjcf"], f["mjx_seconds"], held=True)
+                r["mjx"] = mjx_held(f["mjcf"], f["mjx_seconds"])
         elif m is not None:
             r["bodies"] = bodies(m)
             r["drives"] = drives(m, f)
@@ -412,6 +452,8 @@ def main():
                 r["held"] = mj_drop(f["mjcf"], f["seconds"], held=True)
             if f.get("mjcf_inscribed"):
                 r["held_inscribed"] = mj_drop(f["mjcf_inscribed"], f["seconds"], held=True)
+            if f.get("mjx_seconds"):
+                r["mjx"] = mjx_held(f["mjcf"], f["mjx_seconds"])
             if f.get("track"):
                 r["track"] = track(f["mjcf"], f["track"])
             if f.get("tab_limits"):

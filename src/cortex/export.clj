@@ -251,6 +251,40 @@
                                          (str mf)))))]
             f)))))
 
+(def mesh-cylinder-sides
+  "The sides of the prism `cylinders-as-meshes` writes for a cylinder."
+  16)
+
+(defn- prism-hull
+  "The hull shape of a prism of `mesh-cylinder-sides` sides round the
+  cylinder shape `c`'s axis, its corners on the cylinder."
+  [{:keys [half-extents axis]}]
+  (let [k (long (or axis 1))
+        [i j] (remove #{k} [0 1 2])
+        r (double (nth half-extents i))
+        h (double (nth half-extents k))]
+    {:type :hull
+     :points (vec (for [n (range mesh-cylinder-sides)
+                        end [-1.0 1.0]
+                        :let [t (/ (* 2 Math/PI n) mesh-cylinder-sides)]]
+                    (-> [0.0 0.0 0.0]
+                        (assoc k (* end h))
+                        (assoc i (* r (Math/cos t)))
+                        (assoc j (* r (Math/sin t))))))}))
+
+(defn ^:api cylinders-as-meshes
+  "`plan` (or a creature, see `plan-of`) with each cylinder shape, alone
+  or in a compound, the hull of a prism round it, so that `mjcf` writes
+  it as a convex mesh: for MJX, which collides a cylinder with few
+  shapes. Masses and inertias stay the plan's."
+  [x]
+  (let [cyl (fn cyl [shape]
+              (case (:type shape)
+                :cylinder (prism-hull shape)
+                :compound (update shape :children (partial mapv #(update % :shape cyl)))
+                shape))]
+    (update (plan-of x) :segments (partial mapv #(update % :shape cyl)))))
+
 (defn- loop-equality
   "The MJCF equality constraints that close the loop of Physics-tab
   constraint `c` between its two bodies (`infos` by id), with a comment

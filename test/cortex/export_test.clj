@@ -173,6 +173,24 @@
             "no warning, six geoms, the capsule along Z, the cylinder along X"))
       (skip "cortex.export-test/primitives-are-exported-as-primitives, in MuJoCo"))))
 
+(deftest cylinders-become-meshes-for-mjx
+  (let [p (ex/cylinders-as-meshes primitive-plan)
+        by-id (fn [plan] (into {} (map (juxt :id identity)) (:segments plan)))
+        {{:keys [type points]} :shape} ((by-id p) "cylinder")]
+    (is (= :hull type))
+    (is (= (* 2 ex/mesh-cylinder-sides) (count points)))
+    (is (every? (fn [[x y z]] (and (close? (Math/abs (double x)) 0.25 1e-12)
+                                   (close? (Math/hypot y z) 0.1 1e-12)))
+                points)
+        "every corner on the cylinder's ends and round its axis")
+    (is (= (dissoc ((by-id primitive-plan) "cylinder") :shape) (dissoc ((by-id p) "cylinder") :shape))
+        "mass, inertia and place as they were")
+    (is (= (dissoc (by-id primitive-plan) "cylinder") (dissoc (by-id p) "cylinder"))
+        "every other segment as it was")
+    (let [doc (ex/mjcf p)]
+      (is (not (re-find #"type=\"cylinder\"" doc)))
+      (is (= 1 (count (ex/meshes p))) "the prism, written as a mesh"))))
+
 (deftest a-cone-s-strength-per-axis-or-inscribed
   (doseq [f ["humanoid" "quadruped"]
           :let [[_ p] (placed f)
@@ -602,6 +620,7 @@
     (ex/write! plan mj urdf)
     (ex/write! plan inscribed nil {:cone-strength :inscribed})
     {:name f :mjcf mj :mjcf_inscribed inscribed :urdf urdf :seconds seconds :held true
+     :mjx_seconds 1.0
      :pairs (map :segments (:joints plan))
      :base {:link (:id root) :pos (geo/z-up (:position root))
             :quat (geo/matrix->quat (z-up-rotation (geo/quat->matrix (:rotation root))))}
@@ -719,8 +738,27 @@
   (doseq [{:keys [id mass]} (:segments plan)]
     (is (close? (get-in urdf ["masses" id]) mass 1e-6) id)))
 
+(defn- check-mjx
+  "MJX took fixture `f`'s document as it is, and its held drop's centre
+  of mass is MuJoCo's (`mj-held`) within 1% of size `sz` after 1 s, and
+  within 5% all through that second (landing, float32 against float64
+  finds a contact a step apart)."
+  [f sz mjx mj-held]
+  (if-let [why (get mjx "skipped")]
+    (println (str "SKIPPED cortex.export-test, " f " in MJX: " why))
+    (do (is (nil? (get mjx "error")) (str f ": MJX refused the document: " (get mjx "error")))
+        (when-let [hs (seq (get mjx "heights"))]
+          (let [apart (apply max (map #(Math/abs (- (double %1) (double %2))) hs (mj-held "heights")))
+                mine (double (last hs))
+                theirs (double (nth (mj-held "heights") (dec (count hs))))]
+            (println (format "%s, held, in MJX (JAX %s): centre of mass %.4f m after 1 s, MuJoCo's %.4f; at most %.5f m apart, size %.3f"
+                             f (get mjx "jax") mine theirs apart (double sz)))
+            (is (= 60 (count hs)))
+            (is (< (Math/abs (- mine theirs)) (* 0.01 sz)) (str f ": MJX's held drop after 1 s " mine ", MuJoCo's " theirs))
+            (is (< apart (* 0.05 sz)) (str f ": MJX's held drop " apart " m from MuJoCo's, size " sz)))))))
+
 (defn- check-fixture
-  [f plan cortex cortex-held {:strs [mujoco bodies drives drop urdf] mj-held "held"
+  [f plan cortex cortex-held {:strs [mujoco bodies drives drop urdf mjx] mj-held "held"
                               mj-inscribed "held_inscribed"}]
   (testing f
     (check-bodies plan mujoco bodies)
@@ -749,6 +787,7 @@
       (when (and (settles-alike f) (not (limp-by-chance [engine/name f])))
         (is (< (:rest-speed cortex) 0.1) (str "cortex still moving at " (:rest-speed cortex))))
       (check-held f sz cortex-held mj-held mj-inscribed)
+      (check-mjx f sz mjx mj-held)
       (check-urdf plan urdf))))
 
 (deftest mujoco-and-pybullet-agree-with-cortex
@@ -782,11 +821,14 @@
           plans (into {} (for [f (conj stranger-files "hand-b52")]
                            [f (plan/plan (util/load-blender-model
                                           (str "test/fixtures/strangers/" f ".blend")))]))
+          mjx-hand "hand, cylinders as meshes"
+          plans (assoc plans mjx-hand (ex/cylinders-as-meshes (plans "hand")))
           entries (for [[f p] plans
-                        :let [mj (str (io/file dir (str f ".xml")))
-                              urdf (str (io/file dir (str f ".urdf")))]]
+                        :let [mj (str (io/file dir (str (str/replace f #"[^a-z0-9-]" "_") ".xml")))
+                              urdf (str (io/file dir (str (str/replace f #"[^a-z0-9-]" "_") ".urdf")))]]
                     (do (ex/write! p mj urdf)
-                        {:name f :mjcf mj :urdf urdf :compile_only true}))
+                        (cond-> {:name f :mjcf mj :urdf urdf :compile_only true}
+                          (= f mjx-hand) (assoc :mjx_seconds 1.0))))
           manifest (str (io/file dir "manifest.json"))
           out (str (io/file dir "out.json"))
           _ (spit manifest ((requiring-resolve 'cortex.compare/json) {:fixtures entries}))
@@ -796,10 +838,13 @@
         (let [result ((requiring-resolve 'cortex.blender-test/read-json) (slurp out))]
           (is (= (set (keys plans)) (set (keys result))))
           (doseq [[f p] plans
-                  :let [{:strs [mujoco bodies urdf]} (result f)]]
+                  :let [{:strs [mujoco bodies urdf mjx held]} (result f)]]
             (testing f
               (check-bodies p mujoco bodies)
-              (check-urdf p urdf))))))
+              (check-urdf p urdf)
+              (when (= f mjx-hand)
+                (is (not (re-find #"<geom [^>]*type=\"cylinder\"" (ex/mjcf p))))
+                (check-mjx f (size p) mjx held)))))))
     (skip "cortex.export-test/strangers-creatures-export-at-any-scale")))
 
 (def ^:private eye-turn
