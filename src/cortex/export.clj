@@ -7,7 +7,8 @@
   (the URDF document), `meshes` (the OBJ files both name, file name to
   text), `write!` (documents and meshes into files), `tree` (which
   segment hangs from which), `joint-dofs` (how each joint is written),
-  `muscles` (each joint's strength and gains, from the plan). The
+  `muscles` (each joint's strength and gains, from the plan),
+  `cylinders-as-meshes` (a plan for MJX). The
   geometry (`hull-faces`, `z-up`, `quat->matrix`) is
   cortex.export.geometry's."
   (:require [clojure.java.io :as io]
@@ -21,6 +22,7 @@
             [cortex.export.xml :refer [xml]]
             [cortex.plan :as plan]
             [cortex.segment :as segment]
+            [cortex.shapes :as shapes]
             [cortex.vision :as vision])
   (:import (com.jme3.scene Node)))
 
@@ -257,20 +259,10 @@
 
 (defn- prism-hull
   "The hull shape of a prism of `mesh-cylinder-sides` sides round the
-  cylinder shape `c`'s axis, its corners on the cylinder."
-  [{:keys [half-extents axis]}]
-  (let [k (long (or axis 1))
-        [i j] (remove #{k} [0 1 2])
-        r (double (nth half-extents i))
-        h (double (nth half-extents k))]
-    {:type :hull
-     :points (vec (for [n (range mesh-cylinder-sides)
-                        end [-1.0 1.0]
-                        :let [t (/ (* 2 Math/PI n) mesh-cylinder-sides)]]
-                    (-> [0.0 0.0 0.0]
-                        (assoc k (* end h))
-                        (assoc i (* r (Math/cos t)))
-                        (assoc j (* r (Math/sin t))))))}))
+  cylinder shape `c`'s axis, its corners on the cylinder (the shapes
+  chapter's prism, drawn in by nothing)."
+  [c]
+  {:type :hull :points (vec (shapes/prism-points c 0.0 mesh-cylinder-sides))})
 
 (defn ^:api cylinders-as-meshes
   "`plan` (or a creature, see `plan-of`) with each cylinder shape, alone

@@ -544,21 +544,22 @@
   "The sides of the prism a small cylinder becomes on native Bullet."
   16)
 
-(defn- prism-points
-  "The corners of a prism of `prism-sides` sides round the axis of the
-  cylinder `shape`, drawn in by `m`: [[x y z] ...]."
-  [{:keys [half-extents axis]} m]
-  (let [k (long (or axis 1))
-        [i j] (remove #{k} [0 1 2])
-        r (- (double (nth half-extents i)) m)
-        h (- (double (nth half-extents k)) m)]
-    (for [n (range prism-sides)
-          end [-1.0 1.0]
-          :let [t (/ (* 2 Math/PI n) prism-sides)]]
-      (-> [0.0 0.0 0.0]
-          (assoc k (* end h))
-          (assoc i (* r (Math/cos t)))
-          (assoc j (* r (Math/sin t)))))))
+(defn prism-points
+  "The corners of a prism of `sides` sides (`prism-sides` if not given)
+  round the axis of the cylinder `shape`, drawn in by `m`: [[x y z] ...]."
+  ([shape m] (prism-points shape m prism-sides))
+  ([{:keys [half-extents axis]} m sides]
+   (let [k (long (or axis 1))
+         [i j] (remove #{k} [0 1 2])
+         r (- (double (nth half-extents i)) m)
+         h (- (double (nth half-extents k)) m)]
+     (for [n (range sides)
+           end [-1.0 1.0]
+           :let [t (/ (* 2 Math/PI n) sides)]]
+       (-> [0.0 0.0 0.0]
+           (assoc k (* end h))
+           (assoc i (* r (Math/cos t)))
+           (assoc j (* r (Math/sin t))))))))
 
 (defn- vec3 ^Vector3f [[x y z]] (Vector3f. (float x) (float y) (float z)))
 
