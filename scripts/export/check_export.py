@@ -134,6 +134,29 @@ def add_floor(xml_path, friction):
     return path
 
 
+def load_on_floor(path):
+    """MuJoCo's model of the MJCF at `path` with `add_floor`'s floor of
+    friction 0 (MuJoCo takes the larger of two): (model or None, error)."""
+    floored = add_floor(path, 0)
+    m, err, _ = load(floored)
+    os.remove(floored)
+    return m, err
+
+
+def frames(m, seconds):
+    """How `seconds` are read, once per cortex step (1/60 s) however many
+    of the model's steps that is: (steps a frame, a frame's length, frames)."""
+    sub = max(1, int(round((1 / 60) / m.opt.timestep)))
+    frame = sub * m.opt.timestep
+    return sub, frame, int(round(seconds / frame))
+
+
+def com_height(m, xipos):
+    """The height of the centre of mass of `m`'s bodies at `xipos`."""
+    mass = m.body_mass[1:]
+    return float((mass * xipos[1:, 2]).sum() / mass.sum())
+
+
 def load(path):
     warnings = []
     mujoco.set_mju_user_warning(lambda s: warnings.append(s))
@@ -191,9 +214,7 @@ def sim_warnings(d):
 
 
 def mj_drop(path, seconds, held=False):
-    floored = add_floor(path, 0)
-    m, err, _ = load(floored)
-    os.remove(floored)
+    m, err = load_on_floor(path)
     if m is None:
         return {"error": err}
     # cortex's drop sends its muscles no action, and they pull nothing; an
@@ -205,16 +226,13 @@ def mj_drop(path, seconds, held=False):
         m.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_ACTUATION
     d = mujoco.MjData(m)
     mujoco.mj_forward(m, d)
-    mass = m.body_mass[1:].sum()
     heights, speeds = [], []
     prev = d.xipos.copy()
-    # recorded once per cortex step (1/60 s), however many MuJoCo steps that is
-    sub = max(1, int(round((1 / 60) / m.opt.timestep)))
-    frame = sub * m.opt.timestep
-    for i in range(int(round(seconds / frame))):
+    sub, frame, n = frames(m, seconds)
+    for i in range(n):
         for _ in range(sub):
             mujoco.mj_step(m, d)
-        heights.append(float((m.body_mass[1:] * d.xipos[1:, 2]).sum() / mass))
+        heights.append(com_height(m, d.xipos))
         speeds.append(float(np.linalg.norm(d.xipos[1:] - prev[1:], axis=1).max() / frame))
         prev[:] = d.xipos
     return {"heights": heights, "rest_speed": max(speeds[-30:]), "step": m.opt.timestep,
@@ -230,9 +248,7 @@ def mjx_held(path, seconds):
         import jax
     except ImportError as e:
         return {"skipped": f"MJX is not installed ({e})"}
-    floored = add_floor(path, 0)
-    m, err, _ = load(floored)
-    os.remove(floored)
+    m, err = load_on_floor(path)
     if m is None:
         return {"error": err}
     try:
@@ -243,23 +259,19 @@ def mjx_held(path, seconds):
     mujoco.mj_forward(m, d)
     dx = mjx.put_data(m, d)
     step = jax.jit(mjx.step)
-    mass = m.body_mass[1:]
-    sub = max(1, int(round((1 / 60) / m.opt.timestep)))
+    sub, _, n = frames(m, seconds)
     heights = []
-    for _ in range(int(round(seconds * 60))):
+    for _ in range(n):
         for _ in range(sub):
             dx = step(mx, dx)
-        xi = np.asarray(dx.xipos)
-        heights.append(float((mass * xi[1:, 2]).sum() / mass.sum()))
+        heights.append(com_height(m, np.asarray(dx.xipos)))
     return {"heights": heights, "jax": jax.__version__}
 
 
 def tab_limits(path, fixture):
     """How far a Physics-tab creature's limited angles pass their limits
     in MuJoCo, dropped onto the floor (see the docstring)."""
-    floored = add_floor(path, 0)
-    m, err, _ = load(floored)
-    os.remove(floored)
+    m, err = load_on_floor(path)
     if m is None:
         return {"error": err}
     d = mujoco.MjData(m)
@@ -294,9 +306,7 @@ def tab_limits(path, fixture):
 def loops(path, fixture):
     """How far each loop's two bodies part in MuJoCo, dropped onto the
     floor (see the docstring)."""
-    floored = add_floor(path, 0)
-    m, err, _ = load(floored)
-    os.remove(floored)
+    m, err = load_on_floor(path)
     if m is None:
         return {"error": err}
     m.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_ACTUATION

@@ -41,6 +41,19 @@
   (println (str "SKIPPED " what ": no Python with mujoco and pybullet (set CORTEX_PYTHON,"
                 " or run .ci/run, which makes target/python from scripts/export/requirements.txt)")))
 
+(defn- check-export
+  "Run scripts/export/check_export.py with Python `py` on a manifest of
+  `entries` written into `dir`: its figures by fixture name, or nil, the
+  failed run asserted with what the script said."
+  [py dir entries]
+  (let [manifest (str (io/file dir "manifest.json"))
+        out (str (io/file dir "out.json"))
+        _ (spit manifest ((requiring-resolve 'cortex.compare/json) {:fixtures entries}))
+        {:keys [exit err]} (shell/sh py "scripts/export/check_export.py" manifest out)]
+    (is (zero? exit) err)
+    (when (zero? exit)
+      ((requiring-resolve 'cortex.blender-test/read-json) (slurp out)))))
+
 (defn- placed
   "[creature plan] of `fixture`: loaded, placed with its lowest point
   1 m above y = 0 (as cortex.drops/place! places it), planned and
@@ -445,13 +458,7 @@
   (if-let [py (python)]
     (let [dir (str (Files/createTempDirectory "cortex-tab-export" (make-array FileAttribute 0)))
           runs (into {} (for [f (sort (keys tab-fixtures))] [f (tab-run f 5.0)]))
-          manifest (str (io/file dir "manifest.json"))
-          out (str (io/file dir "out.json"))
-          _ (spit manifest ((requiring-resolve 'cortex.compare/json)
-                            {:fixtures (for [[f r] runs] (tab-entry f r dir))}))
-          {:keys [exit err]} (shell/sh py "scripts/export/check_export.py" manifest out)
-          result (when (zero? exit) ((requiring-resolve 'cortex.blender-test/read-json) (slurp out)))]
-      (is (zero? exit) err)
+          result (check-export py dir (for [[f r] runs] (tab-entry f r dir)))]
       (doseq [[f {:keys [plan creature heights size parting]}] runs
               :let [{:strs [mujoco bodies tab_limits urdf loops] mj-drop "drop"} (get result f)
                     moments (built-moments creature)]
@@ -541,15 +548,9 @@
           dir (str (Files/createTempDirectory "cortex-tab-stations" (make-array FileAttribute 0)))
           mj (str (io/file dir "stations.xml"))
           _ (ex/write! p mj nil)
-          manifest (str (io/file dir "manifest.json"))
-          out (str (io/file dir "out.json"))
-          _ (spit manifest ((requiring-resolve 'cortex.compare/json)
-                            {:fixtures [{:name "stations" :mjcf mj :urdf nil :seconds 1.0 :joints []
-                                         :track [1.0 4.0]}]}))
-          {:keys [exit err]} (shell/sh py "scripts/export/check_export.py" manifest out)
-          result (when (zero? exit)
-                   (get ((requiring-resolve 'cortex.blender-test/read-json) (slurp out)) "stations"))]
-      (is (zero? exit) err)
+          result (get (check-export py dir [{:name "stations" :mjcf mj :urdf nil :seconds 1.0
+                                             :joints [] :track [1.0 4.0]}])
+                      "stations")]
       (when result
         (is (nil? (get-in result ["mujoco" "error"])))
         (is (empty? (get-in result ["mujoco" "warnings"])))
@@ -798,16 +799,10 @@
                             [c2] (placed f)]
                         {:f f :plan plan :entry (manifest-entry f plan dir)
                          :cortex (cortex-drop c plan nil)
-                         :cortex-held (cortex-drop c2 plan (held plan))})))
-          manifest (str (io/file dir "manifest.json"))
-          out (str (io/file dir "out.json"))
-          _ (spit manifest ((requiring-resolve 'cortex.compare/json) {:fixtures (map :entry runs)}))
-          {:keys [exit err]} (shell/sh py "scripts/export/check_export.py" manifest out)]
-      (is (zero? exit) err)
-      (when (zero? exit)
-        (let [result ((requiring-resolve 'cortex.blender-test/read-json) (slurp out))]
-          (doseq [{:keys [f plan cortex cortex-held]} runs]
-            (check-fixture f plan cortex cortex-held (result f))))))
+                         :cortex-held (cortex-drop c2 plan (held plan))})))]
+      (when-let [result (check-export py dir (map :entry runs))]
+        (doseq [{:keys [f plan cortex cortex-held]} runs]
+          (check-fixture f plan cortex cortex-held (result f)))))
     (skip "cortex.export-test/mujoco-and-pybullet-agree-with-cortex")))
 
 (def ^:private stranger-files
@@ -824,27 +819,22 @@
           mjx-hand "hand, cylinders as meshes"
           plans (assoc plans mjx-hand (ex/cylinders-as-meshes (plans "hand")))
           entries (for [[f p] plans
-                        :let [mj (str (io/file dir (str (str/replace f #"[^a-z0-9-]" "_") ".xml")))
-                              urdf (str (io/file dir (str (str/replace f #"[^a-z0-9-]" "_") ".urdf")))]]
+                        :let [file (str dir "/" (str/replace f #"[^a-z0-9-]" "_"))
+                              mj (str file ".xml")
+                              urdf (str file ".urdf")]]
                     (do (ex/write! p mj urdf)
                         (cond-> {:name f :mjcf mj :urdf urdf :compile_only true}
-                          (= f mjx-hand) (assoc :mjx_seconds 1.0))))
-          manifest (str (io/file dir "manifest.json"))
-          out (str (io/file dir "out.json"))
-          _ (spit manifest ((requiring-resolve 'cortex.compare/json) {:fixtures entries}))
-          {:keys [exit err]} (shell/sh py "scripts/export/check_export.py" manifest out)]
-      (is (zero? exit) err)
-      (when (zero? exit)
-        (let [result ((requiring-resolve 'cortex.blender-test/read-json) (slurp out))]
-          (is (= (set (keys plans)) (set (keys result))))
-          (doseq [[f p] plans
-                  :let [{:strs [mujoco bodies urdf mjx held]} (result f)]]
-            (testing f
-              (check-bodies p mujoco bodies)
-              (check-urdf p urdf)
-              (when (= f mjx-hand)
-                (is (not (re-find #"<geom [^>]*type=\"cylinder\"" (ex/mjcf p))))
-                (check-mjx f (size p) mjx held)))))))
+                          (= f mjx-hand) (assoc :mjx_seconds 1.0))))]
+      (when-let [result (check-export py dir entries)]
+        (is (= (set (keys plans)) (set (keys result))))
+        (doseq [[f p] plans
+                :let [{:strs [mujoco bodies urdf mjx held]} (result f)]]
+          (testing f
+            (check-bodies p mujoco bodies)
+            (check-urdf p urdf)
+            (when (= f mjx-hand)
+              (is (not (re-find #"<geom [^>]*type=\"cylinder\"" (ex/mjcf p))))
+              (check-mjx f (size p) mjx held))))))
     (skip "cortex.export-test/strangers-creatures-export-at-any-scale")))
 
 (def ^:private eye-turn
