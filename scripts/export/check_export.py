@@ -23,7 +23,9 @@ constraint's frame, columns its X, Y, Z), "limits": [[lo, hi] or null] x 3
 together), "weld": true or false}] or absent, "track": [seconds, ...] or
 absent, "compile_only": true or absent (then only "mujoco", "bodies" and
 the URDF's check and masses are measured, and where "mjx_seconds" is
-given, "held" and "mjx" that long: nothing else is simulated)}]}.
+given, "held" and "mjx" that long: nothing else is simulated), "limp_only":
+true or absent (then only "mujoco" and the limp "drop" are measured),
+"up_body": a segment or absent (the drop also reports its "up")}]}.
 
 OUT.json, by fixture name:
 - "mujoco": {"error": text or null, "warnings": [text]}.
@@ -45,7 +47,9 @@ OUT.json, by fixture name:
   cortex's creature is when its muscles are sent nothing), "seconds" long,
   read every 1/60 s (cortex's step; MuJoCo's own is the MJCF's): the centre of
   mass height every step, the fastest body speed over the last 0.5 s, and
-  "warnings": what MuJoCo warned of while simulating ({warning: times}).
+  "warnings": what MuJoCo warned of while simulating ({warning: times});
+  where "up_body" is given, "up": that body's up axis (cortex's y, MuJoCo's
+  z) against the world's at the end, 1 upright, 0 on its side.
 - "held" (where the fixture asks, "held": true): the same drop with
   actuation on and every control 0, so that each position servo holds
   its joint at 0, the pose as built (a point joint's motors push nothing).
@@ -213,7 +217,12 @@ def sim_warnings(d):
             for i in range(len(d.warning)) if d.warning[i].number > 0}
 
 
-def mj_drop(path, seconds, held=False):
+def mj_drop(path, seconds, held=False, up_body=None):
+    """The drop of the MJCF at `path` for `seconds`: the centre of mass
+    height every 1/60 s, the fastest body over the last half second and
+    MuJoCo's warnings; with `up_body`, also "up", how far that body's own
+    up (cortex's y, MuJoCo's z) points up at the end (1 upright, 0 on
+    its side)."""
     m, err = load_on_floor(path)
     if m is None:
         return {"error": err}
@@ -235,8 +244,11 @@ def mj_drop(path, seconds, held=False):
         heights.append(com_height(m, d.xipos))
         speeds.append(float(np.linalg.norm(d.xipos[1:] - prev[1:], axis=1).max() / frame))
         prev[:] = d.xipos
-    return {"heights": heights, "rest_speed": max(speeds[-30:]), "step": m.opt.timestep,
-            "frame": frame, "warnings": sim_warnings(d)}
+    out = {"heights": heights, "rest_speed": max(speeds[-30:]), "step": m.opt.timestep,
+           "frame": frame, "warnings": sim_warnings(d)}
+    if up_body:
+        out["up"] = float(d.xmat[m.body(up_body).id][8])
+    return out
 
 
 def mjx_held(path, seconds):
@@ -448,7 +460,9 @@ def main():
         r = {}
         m, err, warnings = load(f["mjcf"])
         r["mujoco"] = {"error": err, "warnings": warnings, "version": mujoco.__version__}
-        if m is not None and f.get("compile_only"):
+        if m is not None and f.get("limp_only"):
+            r["drop"] = mj_drop(f["mjcf"], f["seconds"], up_body=f.get("up_body"))
+        elif m is not None and f.get("compile_only"):
             r["bodies"] = bodies(m)
             if f.get("mjx_seconds"):
                 r["held"] = mj_drop(f["mjcf"], f["mjx_seconds"], held=True)

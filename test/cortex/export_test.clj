@@ -596,18 +596,25 @@
 (defn- cortex-drop
   "Heights of `creature`'s centre of mass after each 1/60 s step, and
   its fastest segment over the last half second; its muscles sent
-  `actions` every step (none: limp)."
-  [creature plan actions]
-  (let [mass (into {} (map (juxt :id :mass)) (:segments plan))
-        total (reduce + (vals mass))
-        s (sim/simulation creature {:floor {:height 0 :friction 1.0} :observe #{:segments}})
-        obs (vec (repeatedly (long (* 60 seconds)) #(sim/step! s actions)))]
-    {:heights (mapv (fn [o] (/ (reduce + (for [[n {[_ y] :position}] (:segments o)] (* (mass n) y)))
-                               total))
-                    obs)
-     :rest-speed (apply max (for [o (subvec obs (- (count obs) 30))
-                                  [_ {v :velocity}] (:segments o)]
-                              (Math/sqrt (reduce + (map * v v)))))}))
+  `actions` every step (none: limp), for `secs` (default `seconds`);
+  with `up-segment`, also :up, how far that segment's own y points up
+  at the end (1 upright, 0 on its side)."
+  ([creature plan actions] (cortex-drop creature plan actions seconds nil))
+  ([creature plan actions secs up-segment]
+   (let [mass (into {} (map (juxt :id :mass)) (:segments plan))
+         total (reduce + (vals mass))
+         s (sim/simulation creature {:floor {:height 0 :friction 1.0} :observe #{:segments}})
+         obs (try (vec (repeatedly (long (* 60 secs)) #(sim/step! s actions)))
+                  (finally (sim/destroy! s)))]
+     (cond-> {:heights (mapv (fn [o] (/ (reduce + (for [[n {[_ y] :position}] (:segments o)]
+                                                   (* (mass n) y)))
+                                        total))
+                             obs)
+              :rest-speed (apply max (for [o (subvec obs (- (count obs) 30))
+                                           [_ {v :velocity}] (:segments o)]
+                                       (Math/sqrt (reduce + (map * v v)))))}
+       up-segment (assoc :up (get-in (geo/quat->matrix (get-in (peek obs) [:segments up-segment :rotation]))
+                                     [1 1]))))))
 
 (defn- manifest-entry
   "What check_export.py needs of fixture `f`, written into `dir`."
@@ -804,6 +811,72 @@
         (doseq [{:keys [f plan cortex cortex-held]} runs]
           (check-fixture f plan cortex cortex-held (result f)))))
     (skip "cortex.export-test/mujoco-and-pybullet-agree-with-cortex")))
+
+(def ^:private headings
+  "Twelve turns about the vertical, 30 degrees apart, in radians."
+  (mapv #(* % (/ Math/PI 6)) (range 12)))
+
+(defn- turned
+  "[creature plan] of the four-legged creature turned by `heading`
+  about the vertical, placed as `placed` places it, and built."
+  [heading]
+  (let [c (util/load-blender-model (fixtures "quadruped"))]
+    (.rotate c (doto (com.jme3.math.Quaternion.) (.fromAngles (float 0) (float heading) (float 0))))
+    (drops/lift! c)
+    (let [p (plan/plan c)]
+      (body/body! c)
+      [c p])))
+
+(defn- pose-of [up] (if (> (double up) 0.5) :belly :side))
+
+(defn- check-two-rests
+  "`drops`: per heading, {:heading :cortex :mujoco}, each a drop with
+  :heights, :rest-speed and :up; `sz` the creature's size."
+  [sz drops]
+  (let [ends (for [{:keys [cortex mujoco]} drops
+                   [who d] [["cortex" cortex] ["MuJoCo" mujoco]]]
+               {:who who :pose (pose-of (:up d)) :end (peek (:heights d))})]
+    (doseq [{:keys [heading cortex mujoco]} drops
+            :let [deg (Math/round (Math/toDegrees heading))]]
+      (println (format "four-legged, limp, turned %3d degrees: MuJoCo %.3f m up after 1 s, %.3f at the end (%s, %.3f m/s); cortex %.3f, %.3f (%s, %.3f m/s)"
+                       deg (nth (:heights mujoco) 59) (peek (:heights mujoco))
+                       (name (pose-of (:up mujoco))) (:rest-speed mujoco)
+                       (nth (:heights cortex) 59) (peek (:heights cortex))
+                       (name (pose-of (:up cortex))) (:rest-speed cortex)))
+      (testing (str "turned " deg " degrees")
+        (is (< (double (:rest-speed mujoco)) 0.1) (str "MuJoCo's still moving at " (:rest-speed mujoco)))
+        (is (< (double (:rest-speed cortex)) 0.1) (str "cortex's still moving at " (:rest-speed cortex)))))
+    (is (some (fn [pose] (= #{"cortex" "MuJoCo"} (set (map :who (filter #(= pose (:pose %)) ends)))))
+              [:belly :side])
+        "no pose that both simulators end in")
+    (doseq [pose [:belly :side]
+            :let [at (filter #(= pose (:pose %)) ends)
+                  hs (map :end at)]
+            :when (seq hs)]
+      (is (< (- (apply max hs) (apply min hs)) (* 0.05 sz))
+          (str "on its " (name pose) " at " (pr-str (map (juxt :who :end) at)))))))
+
+(deftest the-four-legged-creature-rests-as-mujocos-does
+  (if-let [py (python)]
+    (let [dir (str (Files/createTempDirectory "cortex-turned" (make-array FileAttribute 0)))
+          secs 30.0
+          runs (vec (for [h headings]
+                      (let [[c p] (turned h)
+                            mj (str (io/file dir (format "quadruped-%.2f.xml" h)))]
+                        (ex/write! p mj nil)
+                        {:heading h :plan p
+                         :entry {:name (str h) :mjcf mj :seconds secs :limp_only true :up_body "torso"}
+                         :cortex (cortex-drop c p nil secs "torso")})))]
+      (when-let [result (check-export py dir (map :entry runs))]
+        (doseq [{:keys [heading]} runs]
+          (is (nil? (get-in result [(str heading) "mujoco" "error"])))
+          (is (= {} (get-in result [(str heading) "drop" "warnings"]))))
+        (check-two-rests (size (:plan (first runs)))
+                         (for [{:keys [heading cortex]} runs
+                               :let [{:strs [heights rest_speed up]} (get-in result [(str heading) "drop"])]]
+                           {:heading heading :cortex cortex
+                            :mujoco {:heights heights :rest-speed rest_speed :up up}}))))
+    (skip "cortex.export-test/the-four-legged-creature-rests-as-mujocos-does")))
 
 (def ^:private stranger-files
   "The strangers' creatures exported at every size they were saved at."
