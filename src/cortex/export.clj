@@ -150,8 +150,8 @@
   "The MJCF document of `plan`, a creature of cortex's own segments and
   joints, hung from `root` (nil: the heaviest segment), a cone's or point
   joint's strength shared among its three actuators as `cone-strength`
-  says (see `mjcf`)."
-  [plan root cone-strength]
+  says, its friction cone `cone` (see `mjcf`)."
+  [plan root cone-strength cone]
   (let [share (case cone-strength
                 (nil :per-axis) double
                 :inscribed #(/ (double %) (Math/sqrt 3.0))
@@ -181,7 +181,7 @@
            " its Z is -Y); see org/export.org for every mapping and what is lost")
       [:compiler {:angle "radian" :inertiafromgeom "false" :autolimits "true"}]
       [:option {:timestep (/ 1.0 240) :gravity [0.0 0.0 -9.81] :integrator "implicitfast"
-                :solver "Newton" :cone "pyramidal"}]
+                :solver "Newton" :cone cone}]
       (when (seq meshes)
         [:asset (for [[_ {:keys [file]}] (sort-by key meshes)]
                   [:mesh {:name file :file file}])])
@@ -224,14 +224,22 @@
   heaviest); :cone-strength, how a cone's or point joint's strength
   bounds its three actuators: :per-axis (default) each by the strength,
   :inscribed each by the strength over sqrt 3, never more than cortex's
-  bound on the whole torque (see the chapter). A Physics-tab creature's
-  is `tab-mjcf`'s."
+  bound on the whole torque (see the chapter); :friction-cone,
+  MuJoCo's friction cone: :pyramidal (default) or :elliptic, Coulomb's
+  own, the same in every direction (see the chapter). A Physics-tab
+  creature's is `tab-mjcf`'s."
   ([plan] (mjcf plan {}))
-  ([x {:keys [root cone-strength]}]
-   (let [plan (plan-of x)]
+  ([x {:keys [root cone-strength friction-cone]}]
+   (let [plan (plan-of x)
+         cone (case friction-cone
+                (nil :pyramidal) "pyramidal"
+                :elliptic "elliptic"
+                (throw (ex-info (str "cortex.export/mjcf: :friction-cone " (pr-str friction-cone)
+                                     " is neither :pyramidal nor :elliptic")
+                                {:friction-cone friction-cone})))]
      (if (model/physics-tab? plan)
-       (tab-mjcf plan {:root root})
-       (marker-mjcf plan root cone-strength)))))
+       (tab-mjcf plan {:root root :cone cone})
+       (marker-mjcf plan root cone-strength cone)))))
 
 (defn ^:api write!
   "Write `plan` as MJCF to `mjcf-path` and/or URDF to `urdf-path` (nil
@@ -308,8 +316,9 @@
                       {:object name :type type})))))
 
 (defn- tab-mjcf
-  "The MJCF document of Physics-tab `plan` (see `mjcf`)."
-  [plan {:keys [root]}]
+  "The MJCF document of Physics-tab `plan`, its friction cone `cone`
+  (see `mjcf`)."
+  [plan {:keys [root cone]}]
   (let [infos (into {} (map (juxt :id model/tab-segment-info)) (:segments plan))
         {:keys [loops skipped]} (model/tab-joints plan)
         {:keys [roots children joint] :as t} (model/tab-tree plan root)
@@ -344,7 +353,7 @@
          [:equality {:solref [(* 2 step) 1.0] :solimp [0.99 0.999 0.001]}])]
       [:option {:timestep step
                 :gravity (z-up (or (:gravity world) [0.0 -9.81 0.0]))
-                :integrator "implicitfast" :solver "Newton" :cone "pyramidal"}
+                :integrator "implicitfast" :solver "Newton" :cone cone}
        [:flag {:filterparent "disable"}]]
       (when (seq meshes)
         [:asset (for [[_ {:keys [file]}] (sort-by key meshes)]

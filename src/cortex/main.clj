@@ -137,6 +137,9 @@
    [nil "--cone-strength HOW" "with --mjcf: per-axis (default) bounds each of a cone's three servos by its strength, inscribed by strength / sqrt 3"
     :parse-fn keyword
     :validate [#{:per-axis :inscribed} "must be per-axis or inscribed"]]
+   [nil "--friction-cone CONE" "with --mjcf: pyramidal (default, MuJoCo's) or elliptic (Coulomb's, the same in every direction)"
+    :parse-fn keyword
+    :validate [#{:pyramidal :elliptic} "must be pyramidal or elliptic"]]
    [nil "--eyes" "record what the creature's eyes see under the world (the worm with eyes unless a FILE is given)"]
    ["-h" "--help" "say how to use lein run"]])
 
@@ -164,7 +167,7 @@
   [args display?]
   (let [{:keys [options errors summary arguments]} (cli/parse-opts args cli-options)
         {:keys [creature seconds out resolution headless window help report eyes mjcf urdf
-                cone-strength]} options
+                cone-strength friction-cone]} options
         [file & extra] arguments
         creature (cond file (str/replace (.getName (io/file file)) #"\.blend$" "")
                        (and eyes (= creature "worm")) "worm-eyes"
@@ -177,8 +180,10 @@
       report {:action :report :file file}
       (and (or mjcf urdf) (not file)) {:action :error :message "--mjcf and --urdf need a FILE.blend"}
       (and cone-strength (not mjcf)) {:action :error :message "--cone-strength goes with --mjcf"}
+      (and friction-cone (not mjcf)) {:action :error :message "--friction-cone goes with --mjcf"}
       (or mjcf urdf) (cond-> {:action :export :file file :mjcf mjcf :urdf urdf}
-                       cone-strength (assoc :cone-strength cone-strength))
+                       cone-strength (assoc :cone-strength cone-strength)
+                       friction-cone (assoc :friction-cone friction-cone))
       (and headless window) {:action :error :message "--headless and --window contradict each other"}
       (and window (not display?))
       {:action :error
@@ -310,7 +315,7 @@
                    :export (do (doseq [f (export/write! (cortex.plan/plan (blender/load-blender-model (:file p))
                                                                            {:strict? false})
                                                         (:mjcf p) (:urdf p)
-                                                        (select-keys p [:cone-strength]))]
+                                                        (select-keys p [:cone-strength :friction-cone]))]
                                  (println "wrote" f))
                                0)
                    :window (do (show-window! p) 0)

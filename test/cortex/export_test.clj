@@ -254,6 +254,15 @@
                  :when (m "name")]
              [(m "name") m])))
 
+(deftest a-friction-cone-pyramidal-or-elliptic
+  (let [[_ p] (placed "hand")
+        cone (fn [doc] (second (re-find #"<option [^>]*cone=\"(\w+)\"" doc)))]
+    (doseq [plan [p (tab-plan "ragdoll")]]
+      (is (= "pyramidal" (cone (ex/mjcf plan)) (cone (ex/mjcf plan {:friction-cone :pyramidal}))))
+      (is (= "elliptic" (cone (ex/mjcf plan {:friction-cone :elliptic}))))
+      (is (re-find #":friction-cone :round is neither :pyramidal nor :elliptic"
+                   (str (refusal #(ex/mjcf plan {:friction-cone :round}))))))))
+
 (deftest a-physics-tab-creature-is-a-tree
   (let [p (tab-plan "ragdoll")
         {:keys [joints loops skipped]} (model/tab-joints p)
@@ -856,26 +865,48 @@
       (is (< (- (apply max hs) (apply min hs)) (* 0.05 sz))
           (str "on its " (name pose) " at " (pr-str (map (juxt :who :end) at)))))))
 
+
+(defn- check-elliptic
+  "MuJoCo's drops with the elliptic cone, one per heading: all at rest,
+  all in one pose, their ends within 1% of size `sz` of each other."
+  [sz drops]
+  (let [ends (map #(peek (% "heights")) drops)
+        poses (map #(pose-of (% "up")) drops)]
+    (println (format "four-legged, limp, elliptic friction cone: MuJoCo at %.3f to %.3f m at the end, on its %s at the 12 headings, fastest segment %.3f m/s at most"
+                     (apply min ends) (apply max ends) (str/join " or " (map name (distinct poses)))
+                     (apply max (map #(% "rest_speed") drops))))
+    (is (= 1 (count (distinct poses))) (str "poses " (pr-str poses)))
+    (is (< (- (apply max ends) (apply min ends)) (* 0.01 sz)) (str "ends " (pr-str ends)))
+    (doseq [d drops]
+      (is (< (double (d "rest_speed")) 0.1)))))
+
 (deftest the-four-legged-creature-rests-as-mujocos-does
   (if-let [py (python)]
     (let [dir (str (Files/createTempDirectory "cortex-turned" (make-array FileAttribute 0)))
           secs 30.0
           runs (vec (for [h headings]
                       (let [[c p] (turned h)
-                            mj (str (io/file dir (format "quadruped-%.2f.xml" h)))]
+                            mj (str (io/file dir (format "quadruped-%.2f.xml" h)))
+                            ellipse (str (io/file dir (format "quadruped-%.2f-elliptic.xml" h)))]
                         (ex/write! p mj nil)
+                        (ex/write! p ellipse nil {:friction-cone :elliptic})
                         {:heading h :plan p
-                         :entry {:name (str h) :mjcf mj :seconds secs :limp_only true :up_body "torso"}
-                         :cortex (cortex-drop c p nil secs "torso")})))]
-      (when-let [result (check-export py dir (map :entry runs))]
-        (doseq [{:keys [heading]} runs]
-          (is (nil? (get-in result [(str heading) "mujoco" "error"])))
-          (is (= {} (get-in result [(str heading) "drop" "warnings"]))))
-        (check-two-rests (size (:plan (first runs)))
-                         (for [{:keys [heading cortex]} runs
-                               :let [{:strs [heights rest_speed up]} (get-in result [(str heading) "drop"])]]
-                           {:heading heading :cortex cortex
-                            :mujoco {:heights heights :rest-speed rest_speed :up up}}))))
+                         :entries (for [[k path] [["" mj] [" elliptic" ellipse]]]
+                                    {:name (str h k) :mjcf path :seconds secs :limp_only true
+                                     :up_body "torso"})
+                         :cortex (cortex-drop c p nil secs "torso")})))
+          sz (size (:plan (first runs)))]
+      (when-let [result (check-export py dir (mapcat :entries runs))]
+        (doseq [{:keys [entries]} runs
+                {:keys [name]} entries]
+          (is (nil? (get-in result [name "mujoco" "error"])))
+          (is (= {} (get-in result [name "drop" "warnings"]))))
+        (check-two-rests sz (for [{:keys [heading cortex]} runs
+                                  :let [{:strs [heights rest_speed up]} (get-in result [(str heading) "drop"])]]
+                              {:heading heading :cortex cortex
+                               :mujoco {:heights heights :rest-speed rest_speed :up up}}))
+        (check-elliptic sz (for [{:keys [heading]} runs]
+                             (get-in result [(str heading " elliptic") "drop"])))))
     (skip "cortex.export-test/the-four-legged-creature-rests-as-mujocos-does")))
 
 (def ^:private stranger-files

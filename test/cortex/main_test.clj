@@ -60,6 +60,12 @@
                  (:message (main/plan ["q.blend" "--mjcf" "q.xml" "--cone-strength" "equal"] false))))
     (is (re-find #"goes with --mjcf"
                  (:message (main/plan ["q.blend" "--urdf" "q.urdf" "--cone-strength" "inscribed"] false))))
+    (is (= {:action :export :file "q.blend" :mjcf "q.xml" :urdf nil :friction-cone :elliptic}
+           (main/plan ["q.blend" "--mjcf" "q.xml" "--friction-cone" "elliptic"] false)))
+    (is (re-find #"pyramidal or elliptic"
+                 (:message (main/plan ["q.blend" "--mjcf" "q.xml" "--friction-cone" "round"] false))))
+    (is (re-find #"--friction-cone goes with --mjcf"
+                 (:message (main/plan ["q.blend" "--urdf" "q.urdf" "--friction-cone" "elliptic"] false))))
     (is (re-find #"one creature file at a time" (:message (main/plan ["a.blend" "b.blend"] false)))))
   (testing "the report as tables"
     (let [c (body/body! (util/load-blender-model "test/fixtures/designer/quadruped.blend"))
