@@ -56,7 +56,9 @@ OUT.json, by fixture name:
 - "held_inscribed" (where the fixture gives "mjcf_inscribed", the same
   creature written with :cone-strength :inscribed): its held drop.
 - "mjx" (where the fixture gives "mjx_seconds"): the held drop's first
-  "mjx_seconds" in MJX, MuJoCo's JAX port, on the CPU: {"heights", "jax"},
+  "mjx_seconds" in MJX, MuJoCo's JAX port, on the CPU: {"heights", "jax",
+  "chain" (the longest chain of rotations), "fusion" (false where that
+  chain is too long for XLA's fusion pass, which is then left out)},
   {"error": what mjx.put_model or the compiler said}, or {"skipped": why}.
 - "urdf": check_urdf's exit code and output; PyBullet's link masses; and the
   same drop in PyBullet (1/60 s step in four substeps, floor friction 1:
@@ -251,10 +253,36 @@ def mj_drop(path, seconds, held=False, up_body=None):
     return out
 
 
+def rotation_chain(m):
+    """The longest chain of rotations MJX's kinematics composes one after
+    another from the world or a free joint to a body: one per body frame
+    and one per hinge or ball joint on the way (a free joint starts
+    afresh)."""
+    chain = [0] * m.nbody
+    for b in range(1, m.nbody):
+        types = [int(m.jnt_type[j]) for j in range(m.njnt) if m.jnt_bodyid[j] == b]
+        if int(mujoco.mjtJoint.mjJNT_FREE) in types:
+            chain[b] = 0
+        else:
+            chain[b] = chain[m.body_parentid[b]] + 1 + sum(
+                t in (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_BALL)) for t in types)
+    return max(chain)
+
+
+# On the CPU, XLA's fusion pass takes time that grows steeply with the
+# chain (measured with JAX 0.10.2: a chain of 14 compiled in 34 s, the
+# rig chain's 21 not within 200 s, and 14 s with the pass off); a chain
+# of 11 or less compiles in seconds with it on, and runs faster so.
+LONGEST_FUSED_CHAIN = 11
+
+
 def mjx_held(path, seconds):
     """The held drop (as mj_drop's) in MJX, MuJoCo's JAX port, on the CPU:
     whether mjx.put_model takes the model, and the centre of mass height
-    every 1/60 s; {"skipped": why} where MJX or JAX is not installed."""
+    every 1/60 s; "chain" (see rotation_chain) and "fusion" (whether
+    XLA's fusion pass compiled it: not for a chain over
+    LONGEST_FUSED_CHAIN); {"skipped": why} where MJX or JAX is not
+    installed."""
     try:
         from mujoco import mjx
         import jax
@@ -270,14 +298,18 @@ def mjx_held(path, seconds):
     d = mujoco.MjData(m)
     mujoco.mj_forward(m, d)
     dx = mjx.put_data(m, d)
-    step = jax.jit(mjx.step)
+    chain = rotation_chain(m)
+    fusion = chain <= LONGEST_FUSED_CHAIN
+    lowered = jax.jit(mjx.step).lower(mx, dx)
+    step = (lowered.compile() if fusion
+            else lowered.compile(compiler_options={"xla_disable_hlo_passes": "fusion"}))
     sub, _, n = frames(m, seconds)
     heights = []
     for _ in range(n):
         for _ in range(sub):
             dx = step(mx, dx)
         heights.append(com_height(m, np.asarray(dx.xipos)))
-    return {"heights": heights, "jax": jax.__version__}
+    return {"heights": heights, "jax": jax.__version__, "chain": chain, "fusion": fusion}
 
 
 def tab_limits(path, fixture):

@@ -446,7 +446,7 @@
         ;; the URDF's root: the root that is not scenery
         root (by-id (first (filter #(or (pos? (:mass (by-id %))) (seq (children %))) roots)))]
     (ex/write! plan mj u)
-    (cond-> {:name f :mjcf mj :urdf u :seconds 5.0 :joints []
+    (cond-> {:name f :mjcf mj :urdf u :seconds 5.0 :joints [] :held true :mjx_seconds 1.0
              :pairs (for [{:keys [segments settings]} (vals joint)
                           :when (:disable-collisions settings)]
                       segments)
@@ -463,13 +463,43 @@
       root (assoc :base {:link (:id root) :pos (geo/z-up (:position root))
                          :quat (geo/matrix->quat (geo/z-up-rotation (geo/quat->matrix (:rotation root))))}))))
 
+(def ^:private mjx-without-jdotv
+  "The Physics-tab fixtures whose loop moves so fast in its first second
+  that MJX, which leaves out an equality's J'v term, parts from MuJoCo
+  (see the text): the kicking ring."
+  #{"kick"})
+
+(defn- check-mjx
+  "MJX took fixture `f`'s document as it is, and its held drop's centre
+  of mass is MuJoCo's (`mj-held`) within 1% of size `sz` after 1 s, and
+  within 5% all through that second (landing, float32 against float64
+  finds a contact a step apart), but for a `loop?` whose equality MJX
+  solves without MuJoCo's J'v term, where that was measured to matter
+  (`mjx-without-jdotv`, see the text): there only printed."
+  ([f sz mjx mj-held] (check-mjx f sz mjx mj-held false))
+  ([f sz mjx mj-held loop?]
+   (if-let [why (get mjx "skipped")]
+     (println (str "SKIPPED cortex.export-test, " f " in MJX: " why))
+     (do (is (nil? (get mjx "error")) (str f ": MJX refused the document: " (get mjx "error")))
+         (when-let [hs (seq (get mjx "heights"))]
+           (let [apart (apply max (map #(Math/abs (- (double %1) (double %2))) hs (mj-held "heights")))
+                 mine (double (last hs))
+                 theirs (double (nth (mj-held "heights") (dec (count hs))))]
+             (println (format "%s, held, in MJX (JAX %s, rotation chain %s%s): centre of mass %.4f m after 1 s, MuJoCo's %.4f; at most %.5f m apart, size %.3f"
+                              f (get mjx "jax") (get mjx "chain") (if (false? (get mjx "fusion")) ", XLA's fusion off" "")
+                              mine theirs apart (double sz)))
+             (is (= 60 (count hs)))
+             (is (< (Math/abs (- mine theirs)) (* 0.01 sz)) (str f ": MJX's held drop after 1 s " mine ", MuJoCo's " theirs))
+             (when-not loop?
+               (is (< apart (* 0.05 sz)) (str f ": MJX's held drop " apart " m from MuJoCo's, size " sz)))))))))
+
 (deftest a-physics-tab-creature-in-mujoco
   (if-let [py (python)]
     (let [dir (str (Files/createTempDirectory "cortex-tab-export" (make-array FileAttribute 0)))
           runs (into {} (for [f (sort (keys tab-fixtures))] [f (tab-run f 5.0)]))
           result (check-export py dir (for [[f r] runs] (tab-entry f r dir)))]
       (doseq [[f {:keys [plan creature heights size parting]}] runs
-              :let [{:strs [mujoco bodies tab_limits urdf loops] mj-drop "drop"} (get result f)
+              :let [{:strs [mujoco bodies tab_limits urdf loops mjx] mj-drop "drop" mj-held "held"} (get result f)
                     moments (built-moments creature)]
               :when result]
         (testing f
@@ -502,6 +532,7 @@
                 (str label ": MuJoCo's centre of mass " (nth (mj-drop "heights") i) " m up, cortex's "
                      (nth heights i) ", size " size)))
           (is (= {} (mj-drop "warnings")) "MuJoCo warned during the drop")
+          (check-mjx f size mjx mj-held (contains? mjx-without-jdotv f))
           (doseq [[n past] tab_limits
                   :when (not= n "ring")]
             (is (every? #(< % 0.05) past) (str n " past its limits by " past)))
@@ -754,25 +785,6 @@
     (is (not (str/includes? (str out) "Error")) out))
   (doseq [{:keys [id mass]} (:segments plan)]
     (is (close? (get-in urdf ["masses" id]) mass 1e-6) id)))
-
-(defn- check-mjx
-  "MJX took fixture `f`'s document as it is, and its held drop's centre
-  of mass is MuJoCo's (`mj-held`) within 1% of size `sz` after 1 s, and
-  within 5% all through that second (landing, float32 against float64
-  finds a contact a step apart)."
-  [f sz mjx mj-held]
-  (if-let [why (get mjx "skipped")]
-    (println (str "SKIPPED cortex.export-test, " f " in MJX: " why))
-    (do (is (nil? (get mjx "error")) (str f ": MJX refused the document: " (get mjx "error")))
-        (when-let [hs (seq (get mjx "heights"))]
-          (let [apart (apply max (map #(Math/abs (- (double %1) (double %2))) hs (mj-held "heights")))
-                mine (double (last hs))
-                theirs (double (nth (mj-held "heights") (dec (count hs))))]
-            (println (format "%s, held, in MJX (JAX %s): centre of mass %.4f m after 1 s, MuJoCo's %.4f; at most %.5f m apart, size %.3f"
-                             f (get mjx "jax") mine theirs apart (double sz)))
-            (is (= 60 (count hs)))
-            (is (< (Math/abs (- mine theirs)) (* 0.01 sz)) (str f ": MJX's held drop after 1 s " mine ", MuJoCo's " theirs))
-            (is (< apart (* 0.05 sz)) (str f ": MJX's held drop " apart " m from MuJoCo's, size " sz)))))))
 
 (defn- check-fixture
   [f plan cortex cortex-held {:strs [mujoco bodies drives drop urdf mjx] mj-held "held"
