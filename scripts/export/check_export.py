@@ -46,7 +46,8 @@ OUT.json, by fixture name:
   of two, so each geom's own friction rules), actuation off (limp, as
   cortex's creature is when its muscles are sent nothing), "seconds" long,
   read every 1/60 s (cortex's step; MuJoCo's own is the MJCF's): the centre of
-  mass height every step, the fastest body speed over the last 0.5 s, and
+  mass height every step, "across": where it is across the floor, [x, y],
+  every step, the fastest body speed over the last 0.5 s, and
   "warnings": what MuJoCo warned of while simulating ({warning: times});
   where "up_body" is given, "up": that body's up axis (cortex's y, MuJoCo's
   z) against the world's at the end, 1 upright, 0 on its side.
@@ -163,6 +164,13 @@ def com_height(m, xipos):
     return float((mass * xipos[1:, 2]).sum() / mass.sum())
 
 
+def com_across(m, xipos):
+    """Where the centre of mass of `m`'s bodies at `xipos` is across the
+    floor: [x, y] (Z up)."""
+    mass = m.body_mass[1:]
+    return [float(v) for v in (mass[:, None] * xipos[1:, :2]).sum(axis=0) / mass.sum()]
+
+
 def load(path):
     warnings = []
     mujoco.set_mju_user_warning(lambda s: warnings.append(s))
@@ -237,17 +245,18 @@ def mj_drop(path, seconds, held=False, up_body=None):
         m.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_ACTUATION
     d = mujoco.MjData(m)
     mujoco.mj_forward(m, d)
-    heights, speeds = [], []
+    heights, across, speeds = [], [], []
     prev = d.xipos.copy()
     sub, frame, n = frames(m, seconds)
     for i in range(n):
         for _ in range(sub):
             mujoco.mj_step(m, d)
         heights.append(com_height(m, d.xipos))
+        across.append(com_across(m, d.xipos))
         speeds.append(float(np.linalg.norm(d.xipos[1:] - prev[1:], axis=1).max() / frame))
         prev[:] = d.xipos
-    out = {"heights": heights, "rest_speed": max(speeds[-30:]), "step": m.opt.timestep,
-           "frame": frame, "warnings": sim_warnings(d)}
+    out = {"heights": heights, "across": across, "rest_speed": max(speeds[-30:]),
+           "step": m.opt.timestep, "frame": frame, "warnings": sim_warnings(d)}
     if up_body:
         out["up"] = float(d.xmat[m.body(up_body).id][8])
     return out
@@ -448,14 +457,16 @@ def urdf(fixture, drop=True):
             return np.array(ps)
 
         prev = coms()
-        heights, speeds = [], []
+        heights, across, speeds = [], [], []
         for _ in range(int(round(fixture["seconds"] * 60))):
             pb.stepSimulation(physicsClientId=c)
             p = coms()
             heights.append(float((masses * p[:, 2]).sum() / masses.sum()))
+            across.append([float(v) for v in (masses[:, None] * p[:, :2]).sum(axis=0) / masses.sum()])
             speeds.append(float(np.linalg.norm(p - prev, axis=1).max() * 60))
             prev = p
-        out["drop"] = {"heights": heights, "rest_speed": max(speeds[-30:]), "step": 1 / 60}
+        out["drop"] = {"heights": heights, "across": across, "rest_speed": max(speeds[-30:]),
+                       "step": 1 / 60}
     finally:
         pb.disconnect(c)
     return out

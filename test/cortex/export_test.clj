@@ -638,7 +638,8 @@
   its fastest segment over the last half second; its muscles sent
   `actions` every step (none: limp), for `secs` (default `seconds`);
   with `up-segment`, also :up, how far that segment's own y points up
-  at the end (1 upright, 0 on its side)."
+  at the end (1 upright, 0 on its side); :across, where the centre of
+  mass is across the floor after each step, [x y] as MuJoCo has it."
   ([creature plan actions] (cortex-drop creature plan actions seconds nil))
   ([creature plan actions secs up-segment]
    (let [mass (into {} (map (juxt :id :mass)) (:segments plan))
@@ -650,11 +651,18 @@
                                                    (* (mass n) y)))
                                         total))
                              obs)
+              ;; across the floor, as MuJoCo has it (Z up): jME's x and -z
+              :across (mapv (fn [o] (let [[x _ z] (reduce (fn [acc [n {p :position}]]
+                                                           (mapv + acc (map #(* (mass n) %) p)))
+                                                         [0.0 0.0 0.0] (:segments o))]
+                                      [(/ x total) (/ (- z) total)]))
+                            obs)
               :rest-speed (apply max (for [o (subvec obs (- (count obs) 30))
                                            [_ {v :velocity}] (:segments o)]
                                        (Math/sqrt (reduce + (map * v v)))))}
        up-segment (assoc :up (get-in (geo/quat->matrix (get-in (peek obs) [:segments up-segment :rotation]))
                                      [1 1]))))))
+
 
 (defn- manifest-entry
   "What check_export.py needs of fixture `f`, written into `dir`."
@@ -699,6 +707,31 @@
   text: cortex's limp four-legged creature rolls onto its side)."
   #{"worm" "hand" "humanoid"})
 
+(def ^:private stays-put
+  "The fixtures that do not topple when dropped, lying as they were
+  built: where they end across the floor is compared too."
+  #{"worm" "hand"})
+
+(def ^:private stands-when-held
+  "The fixtures that do not topple when held: the four-legged creature
+  stands on its legs."
+  #{"quadruped"})
+
+(defn- check-across
+  "Where fixture `f`'s centre of mass is across the floor in `theirs`
+  (a drop of check_export.py, by `who`) and in `cortex`'s drop, after 1
+  s and at the end: printed, and where it `put?` (does not topple),
+  within 5% of size `sz`."
+  [f who sz theirs cortex put?]
+  (doseq [[label i] [["after 1 s" 59] ["at the end" (dec (count (:across cortex)))]]
+          :let [a (nth (theirs "across") i) b (nth (:across cortex) i)
+                apart (Math/sqrt (reduce + (map #(let [d (- (double %1) (double %2))] (* d d)) a b)))]]
+    (println (format "%s, %s %s: centre of mass across the floor %.4f m from cortex's (size %.3f)"
+                     f who label apart (double sz)))
+    (when put?
+      (is (< apart (* 0.05 sz)) (str who ", " label ": " (pr-str a) " across the floor, cortex's "
+                                     (pr-str b) ", size " sz)))))
+
 (def ^:private limp-by-chance
   "[engine fixture]: a limp drop printed, not asserted, on that engine
   (see the text: jBullet's limp humanoid lands deeper and is thrown
@@ -738,6 +771,7 @@
       (println (str f ", held: " (drop-figures who (mj "heights") (mj "rest_speed"))
                     "; " (drop-figures "cortex" (:heights cortex-held) (:rest-speed cortex-held))))
       (is (= {} (mj "warnings")) (str who " warned during the held drop"))
+      (check-across f (str who ", held,") sz mj cortex-held (or (stays-put f) (stands-when-held f)))
       (doseq [[label i] [["after 1 s" 59] ["at the end" (dec (count (mj "heights")))]]]
         (is (< (Math/abs (- (double (nth (mj "heights") i)) (nth (:heights cortex-held) i)))
                (* 0.05 sz))
@@ -798,7 +832,7 @@
               :let [[k want] (expected-angle (dofs joint) dof end)]]
         (is (< (Math/abs (- (double (nth angles k)) want)) 0.05)
             (str joint " " dof " to its " end ": " (nth angles k) ", cortex's limit " want)))
-      (doseq [[who {:strs [heights rest_speed]}] [["MuJoCo" drop] ["PyBullet" (get urdf "drop")]]
+      (doseq [[who {:strs [heights rest_speed] :as d}] [["MuJoCo" drop] ["PyBullet" (get urdf "drop")]]
               :let [chance? (limp-by-chance [engine/name f])
                     alike? (and (settles-alike f) (not chance?))]]
         (println (str f (cond chance? ", limp, printed only: " alike? ", limp: "
@@ -806,6 +840,7 @@
                       (drop-figures who heights rest_speed) "; "
                       (drop-figures "cortex" (:heights cortex) (:rest-speed cortex))))
         (testing who
+          (check-across f (str who ", limp,") sz d cortex (stays-put f))
           (doseq [[label i] (cond-> (if chance? [] [["after 1 s" 59]])
                               alike? (conj ["at the end" (dec (count heights))]))]
             (is (< (Math/abs (- (double (nth heights i)) (nth (:heights cortex) i))) (* 0.05 sz))
