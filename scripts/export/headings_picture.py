@@ -47,21 +47,20 @@ def tile(mujoco, check, path, cone):
     d = mujoco.MjData(m)
     for _ in range(round(SECONDS / m.opt.timestep)):
         mujoco.mj_step(m, d)
-    mass = m.body_mass[1:]
-    com = (d.xipos[1:] * mass[:, None]).sum(axis=0) / mass.sum()
+    across = check.com_across(m, d.xipos)
     # from behind, along the torso's length (its own x), so that a belly
     # rest shows the legs under it and a side rest shows them sideways
     x = d.xmat[m.body("torso").id].reshape(3, 3)[:, 0]
     cam = mujoco.MjvCamera()
     cam.type = mujoco.mjtCamera.mjCAMERA_FREE
-    cam.lookat[:] = [com[0], com[1], 0.4]
+    cam.lookat[:] = [across[0], across[1], 0.4]
     cam.distance, cam.elevation = 4.5, -15.0
     cam.azimuth = float(np.degrees(np.arctan2(x[1], x[0])))
     r = mujoco.Renderer(m, H, W)
     r.update_scene(d, camera=cam)
     rgb = np.array(r.render())
     r.close()
-    return rgb, float(com[2])
+    return rgb, check.com_height(m, d.xipos)
 
 
 def main():
