@@ -55,15 +55,18 @@
       ((requiring-resolve 'cortex.blender-test/read-json) (slurp out)))))
 
 (defn- placed
-  "[creature plan] of `fixture`: loaded, placed with its lowest point
-  1 m above y = 0 (as cortex.drops/place! places it), planned and
-  built."
-  [fixture]
-  (let [c (util/load-blender-model (fixtures fixture))]
-    (drops/lift! c)
-    (let [p (plan/plan c)]
-      (body/body! c)
-      [c p])))
+  "[creature plan] of `fixture`: loaded, turned by `heading` about the
+  vertical (radians; none by default), placed with its lowest point 1 m
+  above y = 0 (as cortex.drops/place! places it), planned and built."
+  ([fixture] (placed fixture 0.0))
+  ([fixture heading]
+   (let [c (util/load-blender-model (fixtures fixture))]
+     (when-not (zero? (double heading))
+       (.rotate c (doto (com.jme3.math.Quaternion.) (.fromAngles (float 0) (float heading) (float 0)))))
+     (drops/lift! c)
+     (let [p (plan/plan c)]
+       (body/body! c)
+       [c p]))))
 
 (defn- close? [a b tol]
   (if (sequential? a)
@@ -872,17 +875,6 @@
   "Twelve turns about the vertical, 30 degrees apart, in radians."
   (mapv #(* % (/ Math/PI 6)) (range 12)))
 
-(defn- turned
-  "[creature plan] of the four-legged creature turned by `heading`
-  about the vertical, placed as `placed` places it, and built."
-  [heading]
-  (let [c (util/load-blender-model (fixtures "quadruped"))]
-    (.rotate c (doto (com.jme3.math.Quaternion.) (.fromAngles (float 0) (float heading) (float 0))))
-    (drops/lift! c)
-    (let [p (plan/plan c)]
-      (body/body! c)
-      [c p])))
-
 (defn- pose-of [up] (if (> (double up) 0.5) :belly :side))
 
 (defn- check-two-rests
@@ -932,7 +924,7 @@
     (let [dir (str (Files/createTempDirectory "cortex-turned" (make-array FileAttribute 0)))
           secs 30.0
           runs (vec (for [h headings]
-                      (let [[c p] (turned h)
+                      (let [[c p] (placed "quadruped" h)
                             mj (str (io/file dir (format "quadruped-%.2f.xml" h)))
                             ellipse (str (io/file dir (format "quadruped-%.2f-elliptic.xml" h)))]
                         (ex/write! p mj nil)
