@@ -148,17 +148,11 @@
 
 (defn- marker-mjcf
   "The MJCF document of `plan`, a creature of cortex's own segments and
-  joints, hung from `root` (nil: the heaviest segment), a cone's or point
-  joint's strength shared among its three actuators as `cone-strength`
-  says, its friction cone `cone` (see `mjcf`)."
-  [plan root cone-strength cone]
-  (let [share (case cone-strength
-                (nil :per-axis) double
-                :inscribed #(/ (double %) (Math/sqrt 3.0))
-                (throw (ex-info (str "cortex.export/mjcf: :cone-strength " (pr-str cone-strength)
-                                     " is neither :per-axis nor :inscribed")
-                                {:cone-strength cone-strength})))
-        infos (into {} (map (juxt :id segment-info)) (:segments plan))
+  joints, hung from `root` (nil: the heaviest segment), each of a cone's
+  or point joint's three actuators bounded by `share` of its strength,
+  its friction cone `cone` (see `mjcf`)."
+  [plan root share cone]
+  (let [infos (into {} (map (juxt :id segment-info)) (:segments plan))
         {:keys [roots children joint] :as t} (tree plan root)
         all-dofs (plan-dofs plan t)
         meshes (mesh-files plan)
@@ -231,6 +225,13 @@
   ([plan] (mjcf plan {}))
   ([x {:keys [root cone-strength friction-cone]}]
    (let [plan (plan-of x)
+         ;; both options checked here, whichever kind of creature
+         share (case cone-strength
+                 (nil :per-axis) double
+                 :inscribed #(/ (double %) (Math/sqrt 3.0))
+                 (throw (ex-info (str "cortex.export/mjcf: :cone-strength " (pr-str cone-strength)
+                                      " is neither :per-axis nor :inscribed")
+                                 {:cone-strength cone-strength})))
          cone (case friction-cone
                 (nil :pyramidal) "pyramidal"
                 :elliptic "elliptic"
@@ -239,7 +240,7 @@
                                 {:friction-cone friction-cone})))]
      (if (model/physics-tab? plan)
        (tab-mjcf plan {:root root :cone cone})
-       (marker-mjcf plan root cone-strength cone)))))
+       (marker-mjcf plan root share cone)))))
 
 (defn ^:api write!
   "Write `plan` as MJCF to `mjcf-path` and/or URDF to `urdf-path` (nil

@@ -156,7 +156,6 @@
                   "Options:"
                   summary]))
 
-
 (defn plan
   "What lein run should do, given its `args` and whether there is a
   `display?`: a map with :action :help, :error (with :message), :report

@@ -264,7 +264,10 @@
       (is (= "pyramidal" (cone (ex/mjcf plan)) (cone (ex/mjcf plan {:friction-cone :pyramidal}))))
       (is (= "elliptic" (cone (ex/mjcf plan {:friction-cone :elliptic}))))
       (is (re-find #":friction-cone :round is neither :pyramidal nor :elliptic"
-                   (str (refusal #(ex/mjcf plan {:friction-cone :round}))))))))
+                   (str (refusal #(ex/mjcf plan {:friction-cone :round})))))
+      (is (re-find #":cone-strength :equal is neither :per-axis nor :inscribed"
+                   (str (refusal #(ex/mjcf plan {:cone-strength :equal}))))
+          "a Physics-tab creature has no muscles, yet a misspelt option is named"))))
 
 (deftest a-physics-tab-creature-is-a-tree
   (let [p (tab-plan "ragdoll")
