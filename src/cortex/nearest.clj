@@ -283,20 +283,31 @@
   ambiguity window): maps of :kind (:ambiguous-joint or :far-joint),
   :joint, :segments, :distances, :tolerance, for a far joint :allowed
   (half of each segment's thinnest side), and a :message saying what to
-  change."
-  [joint-name measured tolerance]
+  change. With `given?` the tolerance is the window itself (body!'s
+  :tolerance); without, the default's, a third within it is a rival
+  only if half as far again as the second at most, or within a quarter
+  of the window of it."
+  ([joint-name measured tolerance] (joint-doubts joint-name measured tolerance false))
+  ([joint-name measured tolerance given?]
   (let [[a b & more] measured
+        d2 (double (:distance b))
+        rivals (if given?
+                 more
+                 (filter #(let [d (double (:distance %))]
+                            (or (<= d (* 1.5 d2)) (<= (- d d2) (* 0.25 (double tolerance)))))
+                         more))
+        near (into [a b] rivals)
         allowed (into {} (for [{:keys [name geom]} [a b]]
                            [name (* 0.5 (double (first (segment-sides geom))))]))
         outside (filter #(> (double (:distance %)) (double (allowed (:name %)))) [a b])
         base {:joint joint-name :tolerance tolerance
               :distances (into {} (map (juxt :name :distance)) measured)}]
     (cond-> []
-      (seq more)
+      (seq rivals)
       (conj (assoc base :kind :ambiguous-joint
-                   :segments (mapv :name measured)
+                   :segments (mapv :name near)
                    :message (str "joint " (pr-str joint-name) " is about equally near "
-                                 (count measured) " segments (" (distances-text measured)
+                                 (count near) " segments (" (distances-text near)
                                  "; the tolerance is " (fmt tolerance) "), so which two it joins"
                                  " cannot be told; move the empty into the gap between the two"
                                  " it should join, with every other segment farther away")))
@@ -310,7 +321,7 @@
                                  (str/join " and of " (for [{:keys [name]} outside]
                                                         (str name " (" (fmt (allowed name)) ")")))
                                  ": it lies outside the two it joins;"
-                                 " move the empty into the gap where the two meet"))))))
+                                 " move the empty into the gap where the two meet")))))))
 
 (defn duplicate-doubts
   "A doubt for each pair of segments that more than one joint joins,

@@ -110,13 +110,15 @@
 (defn- plan-joints
   "{:joints :doubts :warnings} for the joints of `creature`, found in
   `index` with the ambiguity window `tol`; `id-of` names a Geometry's
-  segment. With :strict? any doubt is an error listing them all."
-  [^Node creature index tol id-of {:keys [strict?]}]
-  (let [found (mapv #(segment/in-creature creature (fn [] (measure-joint index tol %)))
+  segment. With :strict? any doubt is an error listing them all; with
+  :tolerance given, `tol` is the whole window (see joint-doubts)."
+  [^Node creature index tol id-of {:keys [strict? tolerance]}]
+  (let [given? (some? tolerance)
+        found (mapv #(segment/in-creature creature (fn [] (measure-joint index tol %)))
                     (nearest/joints creature))
         naming (nearest/naming-doubts creature)
         doubts (vec (concat (remove :warning? naming)
-                            (mapcat #(nearest/joint-doubts (:name %) (:measured %) tol) found)
+                            (mapcat #(nearest/joint-doubts (:name %) (:measured %) tol given?) found)
                             (nearest/duplicate-doubts (map (juxt :name :segments) found))))]
     (when (and strict? (seq doubts))
       (throw (doubts-error creature doubts)))

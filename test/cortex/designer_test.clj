@@ -252,6 +252,28 @@
         (str file "'s joints opened by " gap " as it fell, against a median segment size of "
              median-size))))
 
+(def ^:private mjcf-strangers
+  (delay (get (read-json (slurp (str strangers "mjcf.json"))) "files")))
+
+(deftest strangers-from-mujocos-walker
+  (doseq [file ["walker2d-apart.blend" "walker2d-sloppy.blend"]
+          :let [{:keys [joints warnings]} (body/report (body/body! (stranger file)))]]
+    (testing file
+      ;; the sloppy walker's turned segments draw :overlap warnings,
+      ;; which judge by world bounds (see "Segments that overlap")
+      (is (= [] (filter #{:ambiguous-joint :far-joint :duplicate-joint} (map :kind warnings))))
+      (is (= (into {} (for [j (get-in @mjcf-strangers [file "joints"])]
+                        [(get j "name") (set (get j "segments"))]))
+             (into {} (for [j joints] [(:name j) (set (:segments j))]))))))
+  (let [e (try (body/body! (stranger "walker2d.blend")) nil
+               (catch clojure.lang.ExceptionInfo e e))
+        doubts (:doubts (ex-data e))]
+    (is (some? e) "walker2d's legs are in one place: its joints are refused")
+    (is (= #{"thigh_joint" "leg_joint" "foot_joint" "thigh_left_joint" "leg_left_joint" "foot_left_joint"}
+           (set (keep #(when (= :ambiguous-joint (:kind %)) (:joint %)) doubts))))
+    (is (re-find #"joint \"thigh_joint\" is about equally near 3 segments \((thigh|torso|thigh_left) 0\.028"
+                 (.getMessage ^Exception e)))))
+
 (def ^:private powers
   "How each length-like number of a report scales: the power of the scale."
   {:tolerance 1 :hull-volume 3 :volume 3 :centre-of-mass 1 :principal-moments 2 :pivot 1
