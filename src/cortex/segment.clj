@@ -234,6 +234,17 @@
   (when (pos? (double mass))
     (engine/set-inertia! control mass [ix iy iz])))
 
+(defn place!
+  "Give `geom` the world place `pos` (Vector3f) and turn `rot`
+  (Quaternion) by setting its local transform under its parent, whose
+  world transform must be up to date. Returns `geom`."
+  [^Geometry geom ^Vector3f pos ^Quaternion rot]
+  (if-let [parent (.getParent geom)]
+    (do (.setLocalTranslation geom (.worldToLocal parent pos nil))
+        (.setLocalRotation geom (.mult (.inverse (.getWorldRotation parent)) rot)))
+    (do (.setLocalTranslation geom pos) (.setLocalRotation geom rot)))
+  geom)
+
 (defn- offset-control
   "A RigidBodyControl for `geom` whose body sits at the segment's centre
   of mass `centre` and is turned by `rotation` from the segment's own
@@ -248,13 +259,8 @@
       (update [tpf]
         (let [^RigidBodyControl this this]
           (when (and (.isEnabled this) (not (and (.isKinematic this) (.isKinematicSpatial this))))
-            (let [rot (.mult (.getPhysicsRotation this) undo)
-                  pos (.subtract (.getPhysicsLocation this) (.mult rot centre))
-                  parent (.getParent geom)]
-              (if parent
-                (do (.setLocalTranslation geom (.worldToLocal parent pos nil))
-                    (.setLocalRotation geom (.mult (.inverse (.getWorldRotation parent)) rot)))
-                (do (.setLocalTranslation geom pos) (.setLocalRotation geom rot))))))))))
+            (let [rot (.mult (.getPhysicsRotation this) undo)]
+              (place! geom (.subtract (.getPhysicsLocation this) (.mult rot centre)) rot))))))))
 
 (defn- offset-shape
   "Shape data `shape`, in the segment's frame, seen from a body at `c`

@@ -388,13 +388,16 @@
   (aget last-efforts 0))
 
 (defn ^:api sync!
-  "Copy every body's place and turn to its Geometry, as each
-  RigidBodyControl does in a world's frame, and bring the scene graph's
-  world transforms up to date. Returns the simulation's root Node."
+  "Put every Geometry where its body says, as a world's frame does (a
+  body moved to its segment's centre of mass or turned to its principal
+  axes is undone: cortex.segment/segment-pose), and bring the scene
+  graph's world transforms up to date. Returns the simulation's root
+  Node."
   ^Node [{:keys [^Node root controls]}]
   (.updateGeometricState root)
-  (doseq [[^Geometry g ^RigidBodyControl c] controls]
-    (.applyTransform (.getMotionState c) g))
+  (doseq [[^Geometry g] controls]
+    (let [[pos rot] (segment/segment-pose g)]
+      (segment/place! g pos rot)))
   (.updateGeometricState root)
   root)
 

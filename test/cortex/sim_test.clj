@@ -204,6 +204,41 @@
       (is (< (.distance (.getWorldTranslation g) (.getPhysicsLocation c)) 1e-5))
       (is (< (Math/abs (- (.y (.getWorldTranslation g)) 0.3)) 0.05) "resting on the floor"))))
 
+(defn- drawn [node]
+  (into {} (for [^Geometry g (body/segments node)]
+             [(.getName g) [(.clone (.getWorldTranslation g)) (.clone (.getWorldRotation g))]])))
+
+(defn- apart [[^Vector3f p ^com.jme3.math.Quaternion q] [^Vector3f p' ^com.jme3.math.Quaternion q']]
+  (max (.distance p p') (- 1.0 (Math/abs (double (.dot q q'))))))
+
+(deftest sync-draws-segments-whose-bodies-are-offset
+  (let [c (body/body! (util/load-blender-model "test/fixtures/strangers/humanoid.blend"))
+        _ (.updateGeometricState c)
+        built (drawn c)
+        s (sim/simulation c {:floor -10 :observe #{}})]
+    (is (<= 5 (count (filter #(cortex.segment/mass-offset %) (body/segments c))))
+        "most of its segments' bodies are off their own frames")
+    (sim/sync! s)
+    (testing "before a step: where the designer left them"
+      (doseq [[n pose] (drawn c)]
+        (is (< (apart pose (built n)) 1e-5) n)))
+    (dotimes [_ 30] (sim/step! s))
+    (sim/sync! s)
+    (let [synced (drawn c)
+          offset? (set (map #(.getName ^Geometry %) (filter cortex.segment/mass-offset (body/segments c))))]
+      (testing "after 30 steps, falling: where their bodies are"
+        (doseq [^Geometry g (body/segments c)
+                :let [[p q] (cortex.segment/segment-pose g)]]
+          (is (< (apart [p q] (synced (.getName g))) 1e-5) (.getName g))))
+      ;; a world's frame: each control places its own Geometry
+      (doseq [^Geometry g (body/segments c)]
+        (.update ^RigidBodyControl (.getControl g RigidBodyControl) (float (/ 1.0 60))))
+      (.updateGeometricState c)
+      (testing "and where a world's frame draws the offset ones"
+        (doseq [[n pose] (drawn c) :when (offset? n)]
+          (is (< (apart pose (synced n)) 1e-5) n))))
+    (sim/destroy! s)))
+
 (deftest a-simulation-can-be-recorded
   (let [dir (str (Files/createTempDirectory "cortex-sim" (into-array FileAttribute [])))
         recorded (sim/simulation (grippy-worm) {:floor 0})
