@@ -366,15 +366,87 @@
                       " under the joints node, so it joins nothing; parent it to joints"
                       " or remove the property")}))))
 
-(defn- shrunk-bound
-  ^BoundingBox [{:keys [lo hi]}]
-  (let [c (map #(/ (+ (double %1) (double %2)) 2) lo hi)
-        e (map #(* 0.499 (- (double %2) (double %1))) lo hi)
-        [cx cy cz] c [ex ey ez] e]
-    (BoundingBox. (Vector3f. cx cy cz) (float ex) (float ey) (float ez))))
+(defn- drawn-in
+  "The triangles of indexed segment `item` in world space, each corner
+  drawn in towards the centre of its bounds by a thousandth: a vector
+  of double arrays [ax ay az bx by bz cx cy cz]."
+  [{:keys [^Geometry geom lo hi]}]
+  (let [mesh (.getMesh geom)
+        c (mapv #(/ (+ (double %1) (double %2)) 2.0) lo hi)
+        k 0.999
+        a (Vector3f.) b (Vector3f.) d (Vector3f.)]
+    (vec (for [i (range (.getTriangleCount mesh))]
+           (do (.getTriangle mesh (int i) a b d)
+               (let [out (double-array 9)]
+                 (doseq [[j ^Vector3f v] [[0 a] [3 b] [6 d]]
+                         :let [w (.localToWorld geom v nil)]]
+                   (aset out j (+ (double (c 0)) (* k (- (.x w) (double (c 0))))))
+                   (aset out (+ j 1) (+ (double (c 1)) (* k (- (.y w) (double (c 1))))))
+                   (aset out (+ j 2) (+ (double (c 2)) (* k (- (.z w) (double (c 2)))))))
+                 out))))))
 
-(defn- meets? [^Geometry g ^BoundingBox b]
-  (pos? (.collideWith g b (CollisionResults.))))
+(defn- hit
+  "Where, as a multiple of (dx dy dz) from (px py pz), the line meets
+  triangle `t`, or -1 when it misses it or runs along its plane."
+  [^doubles t px py pz dx dy dz]
+  (let [px (double px) py (double py) pz (double pz) dx (double dx) dy (double dy) dz (double dz)
+        ax (aget t 0) ay (aget t 1) az (aget t 2)
+        e1x (- (aget t 3) ax) e1y (- (aget t 4) ay) e1z (- (aget t 5) az)
+        e2x (- (aget t 6) ax) e2y (- (aget t 7) ay) e2z (- (aget t 8) az)
+        hx (- (* dy e2z) (* dz e2y)) hy (- (* dz e2x) (* dx e2z)) hz (- (* dx e2y) (* dy e2x))
+        det (+ (* e1x hx) (* e1y hy) (* e1z hz))
+        scale (* (Math/sqrt (+ (* dx dx) (* dy dy) (* dz dz)))
+                 (Math/sqrt (+ (* e1x e1x) (* e1y e1y) (* e1z e1z)))
+                 (Math/sqrt (+ (* e2x e2x) (* e2y e2y) (* e2z e2z))))]
+    (if (<= (Math/abs det) (* 1e-12 scale))
+      -1.0
+      (let [f (/ 1.0 det)
+            sx (- px ax) sy (- py ay) sz (- pz az)
+            u (* f (+ (* sx hx) (* sy hy) (* sz hz)))
+            qx (- (* sy e1z) (* sz e1y)) qy (- (* sz e1x) (* sx e1z)) qz (- (* sx e1y) (* sy e1x))
+            v (* f (+ (* dx qx) (* dy qy) (* dz qz)))]
+        (if (or (< u 0.0) (> u 1.0) (< v 0.0) (> (+ u v) 1.0))
+          -1.0
+          (* f (+ (* e2x qx) (* e2y qy) (* e2z qz))))))))
+
+(defn- edges-cross?
+  "Whether an edge of triangle `s` passes through triangle `t`."
+  [^doubles s ^doubles t]
+  (some (fn [[i j]]
+          (let [i (long i) j (long j)
+                x (aget s i) y (aget s (inc i)) z (aget s (+ i 2))
+                r (hit t x y z (- (aget s j) x) (- (aget s (inc j)) y) (- (aget s (+ j 2)) z))]
+            (<= 0.0 (double r) 1.0)))
+        [[0 3] [3 6] [6 0]]))
+
+(defn- inside?
+  "Whether the first corner of triangle `s` lies inside the closed
+  surface `ts`: a ray from it crosses `ts` an odd number of times."
+  [^doubles s ts]
+  (odd? (count (filter #(pos? (double (hit % (aget s 0) (aget s 1) (aget s 2) 0.5773 0.5774 0.5775))) ts))))
+
+(defn- within
+  "The triangles of `ts` whose bounds meet the box from `lo` to `hi`."
+  [ts lo hi]
+  (filter (fn [^doubles t]
+            (every? (fn [k] (let [k (long k)
+                                  l (min (aget t k) (aget t (+ k 3)) (aget t (+ k 6)))
+                                  h (max (aget t k) (aget t (+ k 3)) (aget t (+ k 6)))]
+                              (and (<= l (double (nth hi k))) (<= (double (nth lo k)) h))))
+                    [0 1 2]))
+          ts))
+
+(defn meshes-overlap?
+  "Whether indexed segments `a` and `b` (see `index-of`), each drawn in
+  by a thousandth, overlap: a triangle of one crosses one of the other,
+  or one lies inside the other."
+  [a b]
+  (let [ta (drawn-in a) tb (drawn-in b)
+        near-a (vec (within ta (:lo b) (:hi b)))
+        near-b (vec (within tb (:lo a) (:hi a)))]
+    (boolean
+     (or (some (fn [s] (some (fn [t] (or (edges-cross? s t) (edges-cross? t s))) near-b)) near-a)
+         (and (seq ta) (seq tb) (or (inside? (first ta) tb) (inside? (first tb) ta)))))))
 
 (defn overlap-warnings
   "Warnings for the segments of `index` that overlap at rest though no
@@ -387,7 +459,7 @@
                na (segment-name ga) nb (segment-name gb)]
          :when (neg? (compare na nb))
          :when (not (contains? joined #{ga gb}))
-         :when (and (meets? ga (shrunk-bound b)) (meets? gb (shrunk-bound a)))]
+         :when (meshes-overlap? a b)]
      {:kind :overlap :segments [na nb] :warning? true
       :message (str "segments " na " and " nb " overlap where they start, and no joint"
                     " joins them: Bullet will push them apart on the first step;"
