@@ -201,6 +201,19 @@
                 ": angles are in radians (90 degrees is (/ Math/PI 2))")
            {:value value}))
 
+(def angle-slack
+  "How far past pi an angle limit may be and be taken as pi (written to
+  a few places: 3.1416, or 3.141593 for 180 degrees)."
+  0.001)
+
+(defn- up-to-pi
+  "Angle `v` within [`lo`, pi], one up to `angle-slack` past either end
+  taken as that end, or nil."
+  [v lo]
+  (let [v (double v) lo (double lo)]
+    (when (<= (- lo angle-slack) v (+ Math/PI angle-slack))
+      (max lo (min Math/PI v)))))
+
 (defn jbullet-hinge-limits
   "The [low high] to give the engine's HingeJoint so that the designer's
   limits [lo hi] (radians, right-hand rule about the designer's axis,
@@ -232,9 +245,11 @@
       (throw (ex-info (str "hinge needs :limit [low high] with low <= high, not "
                            (pr-str limit))
                       {:limit limit})))
-    (when-not (every? #(<= (- Math/PI) (double %) Math/PI) limit)
+    (when-not (every? #(up-to-pi % (- Math/PI)) limit)
       (throw (angle-error "hinge :limit" limit "[-pi, pi]")))
-    {:axis axis :limit limit}))
+    {:axis axis :limit (if (every? #(<= (- Math/PI) (double %) Math/PI) limit)
+                         limit
+                         (mapv #(up-to-pi % (- Math/PI)) limit))}))
 
 (defmethod joint-dispatch :hinge
   [constraints control-a control-b pivot-a pivot-b ^Matrix3f rotation]
@@ -301,10 +316,9 @@
         xy (number-field constraints :limit-xy)
         twist (number-field constraints :twist)]
     (doseq [k [:limit-xz :limit-xy :twist]
-            :let [v (double (get constraints k))]
-            :when (not (<= 0.0 v Math/PI))]
+            :when (not (up-to-pi (get constraints k) 0.0))]
       (throw (angle-error (str "cone " k) (get constraints k) "[0, pi]")))
-    [xz xy twist]))
+    (mapv #(if (<= 0.0 (double %) Math/PI) % (up-to-pi % 0.0)) [xz xy twist])))
 
 (defmethod joint-dispatch :cone
   [constraints control-a control-b pivot-a pivot-b ^Matrix3f rotation]
@@ -331,7 +345,8 @@
         stiffness (field :stiffness nil)
         damping (field :damping 0.0)
         free (fn [k] (let [v (field k Math/PI)]
-                       (if (<= v Math/PI) v (throw (angle-error (str "spring " k) v "[0, pi]")))))]
+                       (if (<= v Math/PI) v
+                           (or (up-to-pi v 0.0) (throw (angle-error (str "spring " k) v "[0, pi]"))))))]
     {:stiffness stiffness :damping damping
      :limit-xz (free :limit-xz) :limit-xy (free :limit-xy) :twist (free :twist)}))
 

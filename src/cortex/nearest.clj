@@ -331,7 +331,8 @@
         :when (> (count names) 1)
         :let [joints (mapv first names)]]
     {:kind :duplicate-joint :joints joints :segments (vec (sort pair))
-     :message (str "joints " (str/join " and " (map pr-str joints)) " both join "
+     :message (str "joints " (str/join ", " (map pr-str (butlast joints))) " and "
+                   (pr-str (last joints)) (if (= 2 (count joints)) " both join " " all join ")
                    (str/join " and " (sort pair))
                    "; delete one, or move it into the gap it belongs to")}))
 

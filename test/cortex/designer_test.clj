@@ -296,8 +296,27 @@
     (is (some? e) "walker2d's legs are in one place: its joints are refused")
     (is (= #{"thigh_joint" "leg_joint" "foot_joint" "thigh_left_joint" "leg_left_joint" "foot_left_joint"}
            (set (keep #(when (= :ambiguous-joint (:kind %)) (:joint %)) doubts))))
+    (is (re-find #"joints \"leg_joint\", \"foot_joint\", \"leg_left_joint\" and \"foot_left_joint\" all join leg and leg_left"
+                 (.getMessage ^Exception e)))
     (is (re-find #"joint \"thigh_joint\" is about equally near 3 segments \((thigh|torso|thigh_left) 0\.028"
                  (.getMessage ^Exception e)))))
+
+(deftest mujocos-pendulum-keeps-pi-to-six-places
+  (let [c (stranger "inverted_pendulum.blend")
+        [lowest] (drops/extent c)
+        _ (.move c 0 (float (- 0.01 (double lowest))) 0)
+        _ (.updateGeometricState c)
+        {:keys [joints warnings]} (body/report (body/body! c))
+        pole (body/segment c "pole")
+        before (.clone (.getWorldRotation pole))
+        floor (util/box 40 1 40 :position (Vector3f. 0 -1 0) :mass 0 :name "floor")]
+    (is (= [] (mapv :kind warnings)))
+    (is (= [#{"cart" "pole"}] (mapv #(set (:segments %)) joints)))
+    (world/run-world! (world/world (util/nodify [c floor]) {}
+                                   #(world/set-gravity % (Vector3f. 0 -9.81 0)) world/no-op)
+                      180)
+    (let [turned (* 2.0 (Math/acos (min 1.0 (Math/abs (double (.dot before (.getWorldRotation pole)))))))]
+      (is (> turned 0.5) (str "the pole turned " turned " rad in 3 s")))))
 
 (def ^:private powers
   "How each length-like number of a report scales: the power of the scale."
