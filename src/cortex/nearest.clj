@@ -289,39 +289,39 @@
   of the window of it."
   ([joint-name measured tolerance] (joint-doubts joint-name measured tolerance false))
   ([joint-name measured tolerance given?]
-  (let [[a b & more] measured
-        d2 (double (:distance b))
-        rivals (if given?
-                 more
-                 (filter #(let [d (double (:distance %))]
-                            (or (<= d (* 1.5 d2)) (<= (- d d2) (* 0.25 (double tolerance)))))
-                         more))
-        near (into [a b] rivals)
-        allowed (into {} (for [{:keys [name geom]} [a b]]
-                           [name (* 0.5 (double (first (segment-sides geom))))]))
-        outside (filter #(> (double (:distance %)) (double (allowed (:name %)))) [a b])
-        base {:joint joint-name :tolerance tolerance
-              :distances (into {} (map (juxt :name :distance)) measured)}]
-    (cond-> []
-      (seq rivals)
-      (conj (assoc base :kind :ambiguous-joint
-                   :segments (mapv :name near)
-                   :message (str "joint " (pr-str joint-name) " is about equally near "
-                                 (count near) " segments (" (distances-text near)
-                                 "; the tolerance is " (fmt tolerance) "), so which two it joins"
-                                 " cannot be told; move the empty into the gap between the two"
-                                 " it should join, with every other segment farther away")))
-      (seq outside)
-      (conj (assoc base :kind :far-joint
-                   :segments [(:name a) (:name b)]
-                   :allowed allowed
-                   :message (str "joint " (pr-str joint-name) " is " (fmt (:distance a))
-                                 " from " (:name a) " and " (fmt (:distance b)) " from "
-                                 (:name b) ", more than half the thinnest side of "
-                                 (str/join " and of " (for [{:keys [name]} outside]
-                                                        (str name " (" (fmt (allowed name)) ")")))
-                                 ": it lies outside the two it joins;"
-                                 " move the empty into the gap where the two meet")))))))
+   (let [[a b & more] measured
+         d2 (double (:distance b))
+         rivals (if given?
+                  more
+                  (filter #(let [d (double (:distance %))]
+                             (or (<= d (* 1.5 d2)) (<= (- d d2) (* 0.25 (double tolerance)))))
+                          more))
+         near (into [a b] rivals)
+         allowed (into {} (for [{:keys [name geom]} [a b]]
+                            [name (* 0.5 (double (first (segment-sides geom))))]))
+         outside (filter #(> (double (:distance %)) (double (allowed (:name %)))) [a b])
+         base {:joint joint-name :tolerance tolerance
+               :distances (into {} (map (juxt :name :distance)) measured)}]
+     (cond-> []
+       (seq rivals)
+       (conj (assoc base :kind :ambiguous-joint
+                    :segments (mapv :name near)
+                    :message (str "joint " (pr-str joint-name) " is about equally near "
+                                  (count near) " segments (" (distances-text near)
+                                  "; the tolerance is " (fmt tolerance) "), so which two it joins"
+                                  " cannot be told; move the empty into the gap between the two"
+                                  " it should join, with every other segment farther away")))
+       (seq outside)
+       (conj (assoc base :kind :far-joint
+                    :segments [(:name a) (:name b)]
+                    :allowed allowed
+                    :message (str "joint " (pr-str joint-name) " is " (fmt (:distance a))
+                                  " from " (:name a) " and " (fmt (:distance b)) " from "
+                                  (:name b) ", more than half the thinnest side of "
+                                  (str/join " and of " (for [{:keys [name]} outside]
+                                                         (str name " (" (fmt (allowed name)) ")")))
+                                  ": it lies outside the two it joins;"
+                                  " move the empty into the gap where the two meet")))))))
 
 (defn duplicate-doubts
   "A doubt for each pair of segments that more than one joint joins,
@@ -440,31 +440,35 @@
 (defn meshes-overlap?
   "Whether indexed segments `a` and `b` (see `index-of`), each drawn in
   by a thousandth, overlap: a triangle of one crosses one of the other,
-  or one lies inside the other."
-  [a b]
-  (let [ta (drawn-in a) tb (drawn-in b)
-        near-a (vec (within ta (:lo b) (:hi b)))
-        near-b (vec (within tb (:lo a) (:hi a)))]
-    (boolean
-     (or (some (fn [s] (some (fn [t] (or (edges-cross? s t) (edges-cross? t s))) near-b)) near-a)
-         (and (seq ta) (seq tb) (or (inside? (first ta) tb) (inside? (first tb) ta)))))))
+  or one lies inside the other. `triangles` gives a segment's drawn-in
+  triangles (by default worked out each time)."
+  ([a b] (meshes-overlap? a b drawn-in))
+  ([a b triangles]
+   (let [ta (triangles a) tb (triangles b)
+         near-a (vec (within ta (:lo b) (:hi b)))
+         near-b (vec (within tb (:lo a) (:hi a)))]
+     (boolean
+      (or (some (fn [s] (some (fn [t] (or (edges-cross? s t) (edges-cross? t s))) near-b)) near-a)
+          (and (seq ta) (seq tb) (or (inside? (first ta) tb) (inside? (first tb) ta))))))))
 
 (defn overlap-warnings
   "Warnings for the segments of `index` that overlap at rest though no
   joint joins them; `joined` is a set of #{geom geom} pairs."
   [{:keys [items] :as index} joined]
-  (distinct
-   (for [a items
-         b (nearby index (:lo a) (:hi a))
-         :let [ga (:geom a) gb (:geom b)
-               na (segment-name ga) nb (segment-name gb)]
-         :when (neg? (compare na nb))
-         :when (not (contains? joined #{ga gb}))
-         :when (meshes-overlap? a b)]
-     {:kind :overlap :segments [na nb] :warning? true
-      :message (str "segments " na " and " nb " overlap where they start, and no joint"
-                    " joins them: Bullet will push them apart on the first step;"
-                    " move them apart or join them")})))
+  ;; a segment's triangles once, however many neighbours it has
+  (let [triangles (memoize drawn-in)]
+    (distinct
+     (for [a items
+           b (nearby index (:lo a) (:hi a))
+           :let [ga (:geom a) gb (:geom b)
+                 na (segment-name ga) nb (segment-name gb)]
+           :when (neg? (compare na nb))
+           :when (not (contains? joined #{ga gb}))
+           :when (meshes-overlap? a b triangles)]
+       {:kind :overlap :segments [na nb] :warning? true
+        :message (str "segments " na " and " nb " overlap where they start, and no joint"
+                      " joins them: Bullet will push them apart on the first step;"
+                      " move them apart or join them")}))))
 
 (defn limit-warnings
   "Warnings for the hinges of `joints` (maps of :name and :description,
