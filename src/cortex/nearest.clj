@@ -334,7 +334,8 @@
      :message (str "joints " (str/join ", " (map pr-str (butlast joints))) " and "
                    (pr-str (last joints)) (if (= 2 (count joints)) " both join " " all join ")
                    (str/join " and " (sort pair))
-                   "; delete one, or move it into the gap it belongs to")}))
+                   "; delete one, or move it into the gap it belongs to"
+                   " (turns about two or three axes at one place are one :cone joint)")}))
 
 (defn- like-joints?
   [^String name]

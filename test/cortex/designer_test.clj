@@ -296,7 +296,7 @@
     (is (some? e) "walker2d's legs are in one place: its joints are refused")
     (is (= #{"thigh_joint" "leg_joint" "foot_joint" "thigh_left_joint" "leg_left_joint" "foot_left_joint"}
            (set (keep #(when (= :ambiguous-joint (:kind %)) (:joint %)) doubts))))
-    (is (re-find #"joints \"leg_joint\", \"foot_joint\", \"leg_left_joint\" and \"foot_left_joint\" all join leg and leg_left"
+    (is (re-find #"joints \"leg_joint\", \"foot_joint\", \"leg_left_joint\" and \"foot_left_joint\" all join leg and leg_left; delete one, or move it into the gap it belongs to \(turns about two or three axes at one place are one :cone joint\)"
                  (.getMessage ^Exception e)))
     (is (re-find #"joint \"thigh_joint\" is about equally near 3 segments \((thigh|torso|thigh_left) 0\.028"
                  (.getMessage ^Exception e)))))
