@@ -207,12 +207,12 @@
   0.001)
 
 (defn- up-to-pi
-  "Angle `v` within [`lo`, pi], one up to `angle-slack` past either end
-  taken as that end, or nil."
+  "Angle `v` as it is when within [`lo`, pi], one up to `angle-slack`
+  past either end taken as that end, or nil."
   [v lo]
-  (let [v (double v) lo (double lo)]
-    (when (<= (- lo angle-slack) v (+ Math/PI angle-slack))
-      (max lo (min Math/PI v)))))
+  (let [x (double v) lo (double lo)]
+    (cond (<= lo x Math/PI) v
+          (<= (- lo angle-slack) x (+ Math/PI angle-slack)) (max lo (min Math/PI x)))))
 
 (defn jbullet-hinge-limits
   "The [low high] to give the engine's HingeJoint so that the designer's
@@ -247,9 +247,7 @@
                       {:limit limit})))
     (when-not (every? #(up-to-pi % (- Math/PI)) limit)
       (throw (angle-error "hinge :limit" limit "[-pi, pi]")))
-    {:axis axis :limit (if (every? #(<= (- Math/PI) (double %) Math/PI) limit)
-                         limit
-                         (mapv #(up-to-pi % (- Math/PI)) limit))}))
+    {:axis axis :limit (mapv #(up-to-pi % (- Math/PI)) limit)}))
 
 (defmethod joint-dispatch :hinge
   [constraints control-a control-b pivot-a pivot-b ^Matrix3f rotation]
@@ -318,7 +316,7 @@
     (doseq [k [:limit-xz :limit-xy :twist]
             :when (not (up-to-pi (get constraints k) 0.0))]
       (throw (angle-error (str "cone " k) (get constraints k) "[0, pi]")))
-    (mapv #(if (<= 0.0 (double %) Math/PI) % (up-to-pi % 0.0)) [xz xy twist])))
+    (mapv #(up-to-pi % 0.0) [xz xy twist])))
 
 (defmethod joint-dispatch :cone
   [constraints control-a control-b pivot-a pivot-b ^Matrix3f rotation]
@@ -345,8 +343,7 @@
         stiffness (field :stiffness nil)
         damping (field :damping 0.0)
         free (fn [k] (let [v (field k Math/PI)]
-                       (if (<= v Math/PI) v
-                           (or (up-to-pi v 0.0) (throw (angle-error (str "spring " k) v "[0, pi]"))))))]
+                       (or (up-to-pi v 0.0) (throw (angle-error (str "spring " k) v "[0, pi]")))))]
     {:stiffness stiffness :damping damping
      :limit-xz (free :limit-xz) :limit-xy (free :limit-xy) :twist (free :twist)}))
 
