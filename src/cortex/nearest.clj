@@ -239,6 +239,158 @@
   (.updateGeometricState parts)
   (targets-near (segment-index parts) joint))
 
+(defn- world-triangles
+  "The triangles of segment `geom` in world space, each corner drawn
+  towards the world point `c` ([x y z]) by the factor `k` (1 leaves
+  them where they are): a vector of double arrays
+  [ax ay az bx by bz cx cy cz]."
+  [^Geometry geom c k]
+  (let [mesh (.getMesh geom)
+        k (double k)
+        a (Vector3f.) b (Vector3f.) d (Vector3f.)]
+    (vec (for [i (range (.getTriangleCount mesh))]
+           (do (.getTriangle mesh (int i) a b d)
+               (let [out (double-array 9)]
+                 (doseq [[j ^Vector3f v] [[0 a] [3 b] [6 d]]
+                         :let [w (.localToWorld geom v nil)]]
+                   (aset out j (+ (double (c 0)) (* k (- (.x w) (double (c 0))))))
+                   (aset out (+ j 1) (+ (double (c 1)) (* k (- (.y w) (double (c 1))))))
+                   (aset out (+ j 2) (+ (double (c 2)) (* k (- (.z w) (double (c 2)))))))
+                 out))))))
+
+(defn- hit
+  "Where, as a multiple of (dx dy dz) from (px py pz), the line meets
+  triangle `t`, or -1 when it misses it or runs along its plane."
+  [^doubles t px py pz dx dy dz]
+  (let [px (double px) py (double py) pz (double pz) dx (double dx) dy (double dy) dz (double dz)
+        ax (aget t 0) ay (aget t 1) az (aget t 2)
+        e1x (- (aget t 3) ax) e1y (- (aget t 4) ay) e1z (- (aget t 5) az)
+        e2x (- (aget t 6) ax) e2y (- (aget t 7) ay) e2z (- (aget t 8) az)
+        hx (- (* dy e2z) (* dz e2y)) hy (- (* dz e2x) (* dx e2z)) hz (- (* dx e2y) (* dy e2x))
+        det (+ (* e1x hx) (* e1y hy) (* e1z hz))
+        scale (* (Math/sqrt (+ (* dx dx) (* dy dy) (* dz dz)))
+                 (Math/sqrt (+ (* e1x e1x) (* e1y e1y) (* e1z e1z)))
+                 (Math/sqrt (+ (* e2x e2x) (* e2y e2y) (* e2z e2z))))]
+    (if (<= (Math/abs det) (* 1e-12 scale))
+      -1.0
+      (let [f (/ 1.0 det)
+            sx (- px ax) sy (- py ay) sz (- pz az)
+            u (* f (+ (* sx hx) (* sy hy) (* sz hz)))
+            qx (- (* sy e1z) (* sz e1y)) qy (- (* sz e1x) (* sx e1z)) qz (- (* sx e1y) (* sy e1x))
+            v (* f (+ (* dx qx) (* dy qy) (* dz qz)))]
+        (if (or (< u 0.0) (> u 1.0) (< v 0.0) (> (+ u v) 1.0))
+          -1.0
+          (* f (+ (* e2x qx) (* e2y qy) (* e2z qz))))))))
+
+(defn- edges-cross?
+  "Whether an edge of triangle `s` passes through triangle `t`."
+  [^doubles s ^doubles t]
+  (some (fn [[i j]]
+          (let [i (long i) j (long j)
+                x (aget s i) y (aget s (inc i)) z (aget s (+ i 2))
+                r (hit t x y z (- (aget s j) x) (- (aget s (inc j)) y) (- (aget s (+ j 2)) z))]
+            (<= 0.0 (double r) 1.0)))
+        [[0 3] [3 6] [6 0]]))
+
+(defn- point-inside?
+  "Whether point (px py pz) lies inside the closed surface `ts`: a ray
+  from it crosses `ts` an odd number of times."
+  [ts px py pz]
+  (odd? (count (filter #(pos? (double (hit % px py pz 0.5773 0.5774 0.5775))) ts))))
+
+(defn- inside?
+  "Whether the first corner of triangle `s` lies inside the closed
+  surface `ts`."
+  [^doubles s ts]
+  (point-inside? ts (aget s 0) (aget s 1) (aget s 2)))
+
+(defn- within
+  "The triangles of `ts` whose bounds meet the box from `lo` to `hi`."
+  [ts lo hi]
+  (filter (fn [^doubles t]
+            (every? (fn [k] (let [k (long k)
+                                  l (min (aget t k) (aget t (+ k 3)) (aget t (+ k 6)))
+                                  h (max (aget t k) (aget t (+ k 3)) (aget t (+ k 6)))]
+                              (and (<= l (double (nth hi k))) (<= (double (nth lo k)) h))))
+                    [0 1 2]))
+          ts))
+
+(defn- point-triangle-d2
+  "The squared distance from point (px py pz) to triangle `t`."
+  [^doubles t px py pz]
+  (let [px (double px) py (double py) pz (double pz)
+        ax (aget t 0) ay (aget t 1) az (aget t 2)
+        abx (- (aget t 3) ax) aby (- (aget t 4) ay) abz (- (aget t 5) az)
+        acx (- (aget t 6) ax) acy (- (aget t 7) ay) acz (- (aget t 8) az)
+        apx (- px ax) apy (- py ay) apz (- pz az)
+        d1 (+ (* abx apx) (* aby apy) (* abz apz))
+        d2 (+ (* acx apx) (* acy apy) (* acz apz))
+        d3 (- d1 (+ (* abx abx) (* aby aby) (* abz abz)))
+        d4 (- d2 (+ (* acx abx) (* acy aby) (* acz abz)))
+        d5 (- d1 (+ (* abx acx) (* aby acy) (* abz acz)))
+        d6 (- d2 (+ (* acx acx) (* acy acy) (* acz acz)))
+        vc (- (* d1 d4) (* d3 d2)) vb (- (* d5 d2) (* d1 d6)) va (- (* d3 d6) (* d5 d4))
+        ;; the nearest point is a + v (b - a) + w (c - a)
+        [v w] (cond (and (<= d1 0.0) (<= d2 0.0)) [0.0 0.0]
+                    (and (>= d3 0.0) (<= d4 d3)) [1.0 0.0]
+                    (and (<= vc 0.0) (>= d1 0.0) (<= d3 0.0)) [(/ d1 (- d1 d3)) 0.0]
+                    (and (>= d6 0.0) (<= d5 d6)) [0.0 1.0]
+                    (and (<= vb 0.0) (>= d2 0.0) (<= d6 0.0)) [0.0 (/ d2 (- d2 d6))]
+                    (and (<= va 0.0) (>= (- d4 d3) 0.0) (>= (- d5 d6) 0.0))
+                    (let [u (/ (- d4 d3) (+ (- d4 d3) (- d5 d6)))] [(- 1.0 u) u])
+                    (pos? (+ va vb vc)) (let [s (/ 1.0 (+ va vb vc))] [(* vb s) (* vc s)])
+                    ;; no area: its edges, measured apart, say how near it is
+                    :else [0.0 0.0])
+        v (double v) w (double w)
+        qx (- apx (* v abx) (* w acx)) qy (- apy (* v aby) (* w acy)) qz (- apz (* v abz) (* w acz))]
+    (+ (* qx qx) (* qy qy) (* qz qz))))
+
+(defn- edges-d2
+  "The squared distance between the edge of triangle `s` from corner
+  offset `i` to `j` and that of `t` from `k` to `l`."
+  [^doubles s i j ^doubles t k l]
+  (let [i (long i) j (long j) k (long k) l (long l)
+        ux (- (aget s j) (aget s i)) uy (- (aget s (inc j)) (aget s (inc i))) uz (- (aget s (+ j 2)) (aget s (+ i 2)))
+        vx (- (aget t l) (aget t k)) vy (- (aget t (inc l)) (aget t (inc k))) vz (- (aget t (+ l 2)) (aget t (+ k 2)))
+        rx (- (aget s i) (aget t k)) ry (- (aget s (inc i)) (aget t (inc k))) rz (- (aget s (+ i 2)) (aget t (+ k 2)))
+        a (+ (* ux ux) (* uy uy) (* uz uz)) e (+ (* vx vx) (* vy vy) (* vz vz))
+        b (+ (* ux vx) (* uy vy) (* uz vz)) c (+ (* ux rx) (* uy ry) (* uz rz))
+        f (+ (* vx rx) (* vy ry) (* vz rz))
+        clamp (fn ^double [^double x] (max 0.0 (min 1.0 x)))
+        [p q] (cond (and (zero? a) (zero? e)) [0.0 0.0]
+                    (zero? a) [0.0 (clamp (/ f e))]
+                    (zero? e) [(clamp (/ (- c) a)) 0.0]
+                    :else (let [den (- (* a e) (* b b))
+                                p (if (pos? den) (clamp (/ (- (* b f) (* c e)) den)) 0.0)
+                                q (/ (+ (* b p) f) e)]
+                            (cond (neg? q) [(clamp (/ (- c) a)) 0.0]
+                                  (> q 1.0) [(clamp (/ (- b c) a)) 1.0]
+                                  :else [p q])))
+        p (double p) q (double q)
+        dx (- (+ rx (* p ux)) (* q vx)) dy (- (+ ry (* p uy)) (* q vy)) dz (- (+ rz (* p uz)) (* q vz))]
+    (+ (* dx dx) (* dy dy) (* dz dz))))
+
+(defn- triangles-d2
+  "The squared distance between triangles `s` and `t`: 0 when they
+  cross."
+  [^doubles s ^doubles t]
+  (if (or (edges-cross? s t) (edges-cross? t s))
+    0.0
+    (let [edges [[0 3] [3 6] [6 0]]]
+      (reduce min (concat (for [i [0 3 6]] (point-triangle-d2 t (aget s i) (aget s (+ i 1)) (aget s (+ i 2))))
+                          (for [i [0 3 6]] (point-triangle-d2 s (aget t i) (aget t (+ i 1)) (aget t (+ i 2))))
+                          (for [[i j] edges [k l] edges] (edges-d2 s i j t k l)))))))
+
+(defn- gap
+  "How near triangles `ta` and `tb` come, 0 where two cross, looking
+  only at those that meet the box from `lo` to `hi`; infinite when
+  either has none there."
+  [ta tb lo hi]
+  (let [na (vec (within ta lo hi)) nb (vec (within tb lo hi))]
+    (if (or (empty? na) (empty? nb))
+      Double/POSITIVE_INFINITY
+      (Math/sqrt (double (reduce min (for [s na t nb] (triangles-d2 s t))))))))
+
 (defn tolerance
   "The indexed creature's ambiguity window: a third segment within this
   of a joint's second nearest (or, for an eye, a second within this of
@@ -277,18 +429,60 @@
   (str/join ", " (for [{:keys [name distance]} measured]
                    (str name " " (fmt distance)))))
 
+(defn- contains-point?
+  "Whether point `p` ([x y z]) lies inside the segment of measured map
+  `y`."
+  [p y]
+  (let [[px py pz] p]
+    (point-inside? (world-triangles (:geom y) [0.0 0.0 0.0] 1.0) px py pz)))
+
+(defn- reach-from-inside
+  "How segment `x` (a measured map) stands from point `p` inside segment
+  `y`: {:inside (y's name) :depth (p to y's surface) :gap (how near x
+  and y come around p) :near? (whether x comes within `allowed` of y's
+  surface there, and p is no farther from x than its depth, that gap
+  and `allowed` together)}."
+  [p x y allowed]
+  (let [dx (double (:distance x)) dy (double (:distance y)) allowed (double allowed)
+        ;; nearer than y's own surface, x reaches into y: they overlap there
+        g (if (<= dx dy)
+            0.0
+            (let [r (* 1.001 dx)
+                  t #(world-triangles (:geom %) [0.0 0.0 0.0] 1.0)]
+              (gap (t x) (t y) (mapv #(- (double %) r) p) (mapv #(+ (double %) r) p))))]
+    {:inside (:name y) :depth dy :gap g
+     :near? (and (<= g allowed) (<= dx (+ dy g allowed)))}))
+
+(defn- far-message
+  [joint-name a b outside allowed {:keys [inside depth gap]}]
+  (if inside
+    (let [{:keys [name distance]} (first outside)]
+      (str "joint " (pr-str joint-name) " lies " (fmt depth) " inside " inside " and "
+           (fmt distance) " from " name ", more than its depth"
+           (when (Double/isFinite gap) (str ", the gap between the two (" (fmt gap) ")"))
+           " and half the thinnest side of " name " (" (fmt (allowed name)) ") together,"
+           " so it is not where the two meet; move the empty into the gap where they meet"))
+    (str "joint " (pr-str joint-name) " is " (fmt (:distance a)) " from " (:name a) " and "
+         (fmt (:distance b)) " from " (:name b) ", more than half the thinnest side of "
+         (str/join " and of " (for [{:keys [name]} outside] (str name " (" (fmt (allowed name)) ")")))
+         ": it lies outside the two it joins; move the empty into the gap where the two meet")))
+
 (defn joint-doubts
   "The doubts about joint empty `joint-name` given its `measured` nearest
   segments (see `nearest-segments`) and the creature's `tolerance` (the
   ambiguity window): maps of :kind (:ambiguous-joint or :far-joint),
   :joint, :segments, :distances, :tolerance, for a far joint :allowed
-  (half of each segment's thinnest side), and a :message saying what to
-  change. With `given?` the tolerance is the window itself (body!'s
+  (half of each segment's thinnest side) and, when `point` (the empty's
+  [x y z]) lies inside one of the two, :inside (how the other stands
+  from that one's surface: see the chapter), and a :message saying what
+  to change.
+  With `given?` the tolerance is the window itself (body!'s
   :tolerance); without, the default's, a third within it is a rival
   only if half as far again as the second at most, or within a quarter
   of the window of it."
-  ([joint-name measured tolerance] (joint-doubts joint-name measured tolerance false))
-  ([joint-name measured tolerance given?]
+  ([joint-name measured tolerance] (joint-doubts joint-name measured tolerance false nil))
+  ([joint-name measured tolerance given?] (joint-doubts joint-name measured tolerance given? nil))
+  ([joint-name measured tolerance given? point]
    (let [[a b & more] measured
          d2 (double (:distance b))
          rivals (if given?
@@ -299,7 +493,13 @@
          near (into [a b] rivals)
          allowed (into {} (for [{:keys [name geom]} [a b]]
                             [name (* 0.5 (double (first (segment-sides geom))))]))
-         outside (filter #(> (double (:distance %)) (double (allowed (:name %)))) [a b])
+         beyond (filter #(> (double (:distance %)) (double (allowed (:name %)))) [a b])
+         ;; never far from a segment it lies inside; judged from that one's surface
+         holders (when (and point (seq beyond)) (filterv #(contains-point? point %) [a b]))
+         left (remove (set holders) beyond)
+         from (when (and (seq holders) (seq left))
+                (reach-from-inside point (first left) (first holders) (allowed (:name (first left)))))
+         outside (if (:near? from) [] left)
          base {:joint joint-name :tolerance tolerance
                :distances (into {} (map (juxt :name :distance)) measured)}]
      (cond-> []
@@ -312,16 +512,11 @@
                                   " cannot be told; move the empty into the gap between the two"
                                   " it should join, with every other segment farther away")))
        (seq outside)
-       (conj (assoc base :kind :far-joint
-                    :segments [(:name a) (:name b)]
-                    :allowed allowed
-                    :message (str "joint " (pr-str joint-name) " is " (fmt (:distance a))
-                                  " from " (:name a) " and " (fmt (:distance b)) " from "
-                                  (:name b) ", more than half the thinnest side of "
-                                  (str/join " and of " (for [{:keys [name]} outside]
-                                                         (str name " (" (fmt (allowed name)) ")")))
-                                  ": it lies outside the two it joins;"
-                                  " move the empty into the gap where the two meet")))))))
+       (conj (cond-> (assoc base :kind :far-joint
+                            :segments [(:name a) (:name b)]
+                            :allowed allowed
+                            :message (far-message joint-name a b outside allowed from))
+               from (assoc :inside from)))))))
 
 (defn duplicate-doubts
   "A doubt for each pair of segments that more than one joint joins,
@@ -370,73 +565,9 @@
 
 (defn- drawn-in
   "The triangles of indexed segment `item` in world space, each corner
-  drawn in towards the centre of its bounds by a thousandth: a vector
-  of double arrays [ax ay az bx by bz cx cy cz]."
-  [{:keys [^Geometry geom lo hi]}]
-  (let [mesh (.getMesh geom)
-        c (mapv #(/ (+ (double %1) (double %2)) 2.0) lo hi)
-        k 0.999
-        a (Vector3f.) b (Vector3f.) d (Vector3f.)]
-    (vec (for [i (range (.getTriangleCount mesh))]
-           (do (.getTriangle mesh (int i) a b d)
-               (let [out (double-array 9)]
-                 (doseq [[j ^Vector3f v] [[0 a] [3 b] [6 d]]
-                         :let [w (.localToWorld geom v nil)]]
-                   (aset out j (+ (double (c 0)) (* k (- (.x w) (double (c 0))))))
-                   (aset out (+ j 1) (+ (double (c 1)) (* k (- (.y w) (double (c 1))))))
-                   (aset out (+ j 2) (+ (double (c 2)) (* k (- (.z w) (double (c 2)))))))
-                 out))))))
-
-(defn- hit
-  "Where, as a multiple of (dx dy dz) from (px py pz), the line meets
-  triangle `t`, or -1 when it misses it or runs along its plane."
-  [^doubles t px py pz dx dy dz]
-  (let [px (double px) py (double py) pz (double pz) dx (double dx) dy (double dy) dz (double dz)
-        ax (aget t 0) ay (aget t 1) az (aget t 2)
-        e1x (- (aget t 3) ax) e1y (- (aget t 4) ay) e1z (- (aget t 5) az)
-        e2x (- (aget t 6) ax) e2y (- (aget t 7) ay) e2z (- (aget t 8) az)
-        hx (- (* dy e2z) (* dz e2y)) hy (- (* dz e2x) (* dx e2z)) hz (- (* dx e2y) (* dy e2x))
-        det (+ (* e1x hx) (* e1y hy) (* e1z hz))
-        scale (* (Math/sqrt (+ (* dx dx) (* dy dy) (* dz dz)))
-                 (Math/sqrt (+ (* e1x e1x) (* e1y e1y) (* e1z e1z)))
-                 (Math/sqrt (+ (* e2x e2x) (* e2y e2y) (* e2z e2z))))]
-    (if (<= (Math/abs det) (* 1e-12 scale))
-      -1.0
-      (let [f (/ 1.0 det)
-            sx (- px ax) sy (- py ay) sz (- pz az)
-            u (* f (+ (* sx hx) (* sy hy) (* sz hz)))
-            qx (- (* sy e1z) (* sz e1y)) qy (- (* sz e1x) (* sx e1z)) qz (- (* sx e1y) (* sy e1x))
-            v (* f (+ (* dx qx) (* dy qy) (* dz qz)))]
-        (if (or (< u 0.0) (> u 1.0) (< v 0.0) (> (+ u v) 1.0))
-          -1.0
-          (* f (+ (* e2x qx) (* e2y qy) (* e2z qz))))))))
-
-(defn- edges-cross?
-  "Whether an edge of triangle `s` passes through triangle `t`."
-  [^doubles s ^doubles t]
-  (some (fn [[i j]]
-          (let [i (long i) j (long j)
-                x (aget s i) y (aget s (inc i)) z (aget s (+ i 2))
-                r (hit t x y z (- (aget s j) x) (- (aget s (inc j)) y) (- (aget s (+ j 2)) z))]
-            (<= 0.0 (double r) 1.0)))
-        [[0 3] [3 6] [6 0]]))
-
-(defn- inside?
-  "Whether the first corner of triangle `s` lies inside the closed
-  surface `ts`: a ray from it crosses `ts` an odd number of times."
-  [^doubles s ts]
-  (odd? (count (filter #(pos? (double (hit % (aget s 0) (aget s 1) (aget s 2) 0.5773 0.5774 0.5775))) ts))))
-
-(defn- within
-  "The triangles of `ts` whose bounds meet the box from `lo` to `hi`."
-  [ts lo hi]
-  (filter (fn [^doubles t]
-            (every? (fn [k] (let [k (long k)
-                                  l (min (aget t k) (aget t (+ k 3)) (aget t (+ k 6)))
-                                  h (max (aget t k) (aget t (+ k 3)) (aget t (+ k 6)))]
-                              (and (<= l (double (nth hi k))) (<= (double (nth lo k)) h))))
-                    [0 1 2]))
-          ts))
+  drawn in towards the centre of its bounds by a thousandth."
+  [{:keys [geom lo hi]}]
+  (world-triangles geom (mapv #(/ (+ (double %1) (double %2)) 2.0) lo hi) 0.999))
 
 (defn meshes-overlap?
   "Whether indexed segments `a` and `b` (see `index-of`), each drawn in

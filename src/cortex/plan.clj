@@ -96,6 +96,7 @@
   (let [measured (nearest/nearest-segments index marker tol)
         pair (vec (nearest/ordered-pair marker (map :geom (take 2 measured))))]
     {:marker marker :name (.getName marker) :measured measured :geoms pair
+     :point (let [p (.getWorldTranslation marker)] [(.x p) (.y p) (.z p)])
      :segments (mapv segment/segment-name pair)}))
 
 (defn- doubts-error
@@ -118,7 +119,7 @@
                     (nearest/joints creature))
         naming (nearest/naming-doubts creature)
         doubts (vec (concat (remove :warning? naming)
-                            (mapcat #(nearest/joint-doubts (:name %) (:measured %) tol given?) found)
+                            (mapcat #(nearest/joint-doubts (:name %) (:measured %) tol given? (:point %)) found)
                             (nearest/duplicate-doubts (map (juxt :name :segments) found))))]
     (when (and strict? (seq doubts))
       (throw (doubts-error creature doubts)))

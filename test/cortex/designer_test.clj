@@ -301,6 +301,30 @@
     (is (re-find #"joint \"thigh_joint\" is about equally near 3 segments \((thigh|torso|thigh_left) 0\.028"
                  (.getMessage ^Exception e)))))
 
+(defn- pairs-of
+  [joints]
+  (into {} (for [j joints] [(get j "name" (:name j)) (set (get j "segments" (:segments j)))])))
+
+(deftest mujocos-humanoid-with-ankles
+  (doseq [file ["mujoco-humanoid.blend" "mujoco-humanoid-sloppy.blend"]
+          scale (if (= file "mujoco-humanoid.blend") [1.0 0.01 100.0] [1.0])
+          :let [c (doto (stranger file) (.setLocalScale (float scale)) (.updateGeometricState))
+                {:keys [joints warnings]} (body/report (body/body! c))]]
+    (testing (str file " at " scale)
+      (is (= [] (mapv :kind warnings)))
+      (is (= 12 (count joints)))
+      (is (= (pairs-of (get-in @mjcf-strangers [file "joints"])) (pairs-of joints)))))
+  (doseq [[what object dy] [["the foot 0.02 lower" "right_foot" -0.02]
+                            ["the ankle 0.05 up inside the shin" "right_ankle_y" 0.05]]
+          :let [c (stranger "mujoco-humanoid.blend")
+                _ (.move (.getChild c ^String object) 0 (float dy) 0)
+                e (try (body/body! c) nil (catch clojure.lang.ExceptionInfo e e))]]
+    (testing what
+      (is (= [[:far-joint "right_ankle_y"]] (mapv (juxt :kind :joint) (:doubts (ex-data e)))))
+      (is (= "right_shin" (get-in (ex-data e) [:doubts 0 :inside :inside])))
+      (is (re-find #"joint \"right_ankle_y\" lies 0\.0\d+ inside right_shin and 0\.\d+ from right_foot"
+                   (str (some-> e .getMessage)))))))
+
 (deftest mujocos-pendulum-keeps-pi-to-six-places
   (let [c (stranger "inverted_pendulum.blend")
         [lowest] (drops/extent c)
