@@ -292,11 +292,35 @@
             (<= 0.0 (double r) 1.0)))
         [[0 3] [3 6] [6 0]]))
 
-(defn- point-inside?
-  "Whether point (px py pz) lies inside the closed surface `ts`: a ray
-  from it crosses `ts` an odd number of times."
+(defn- winding
+  "How many times the triangles `ts` wind around point (px py pz): the
+  solid angles they make at the point, summed, over 4 pi (Van Oosterom
+  and Strackee's formula). About 1 inside a closed piece (-1 if it is
+  turned inside out), 0 outside, 1/2 on its surface; pieces that
+  overlap add up."
   [ts px py pz]
-  (odd? (count (filter #(pos? (double (hit % px py pz 0.5773 0.5774 0.5775))) ts))))
+  (let [px (double px) py (double py) pz (double pz)]
+    (/ (reduce + 0.0
+               (for [^doubles t ts]
+                 (let [ax (- (aget t 0) px) ay (- (aget t 1) py) az (- (aget t 2) pz)
+                       bx (- (aget t 3) px) by (- (aget t 4) py) bz (- (aget t 5) pz)
+                       cx (- (aget t 6) px) cy (- (aget t 7) py) cz (- (aget t 8) pz)
+                       la (Math/sqrt (+ (* ax ax) (* ay ay) (* az az)))
+                       lb (Math/sqrt (+ (* bx bx) (* by by) (* bz bz)))
+                       lc (Math/sqrt (+ (* cx cx) (* cy cy) (* cz cz)))
+                       det (+ (* ax (- (* by cz) (* bz cy))) (* ay (- (* bz cx) (* bx cz)))
+                              (* az (- (* bx cy) (* by cx))))
+                       den (+ (* la lb lc) (* lc (+ (* ax bx) (* ay by) (* az bz)))
+                              (* lb (+ (* ax cx) (* ay cy) (* az cz)))
+                              (* la (+ (* bx cx) (* by cy) (* bz cz))))]
+                   (* 2.0 (Math/atan2 det den)))))
+       (* 4.0 Math/PI))))
+
+(defn- point-inside?
+  "Whether point (px py pz) lies inside the closed surface, or the
+  closed pieces, of triangles `ts`."
+  [ts px py pz]
+  (> (Math/abs (double (winding ts px py pz))) 0.5))
 
 (defn- inside?
   "Whether the first corner of triangle `s` lies inside the closed
@@ -429,6 +453,13 @@
   (str/join ", " (for [{:keys [name distance]} measured]
                    (str name " " (fmt distance)))))
 
+(defn- at-most?
+  "Whether length `d` is no more than `limit`, to a ten-thousandth of
+  it: a distance is measured to a millionth of itself, on meshes of
+  floats, so one at the limit may read a little over it."
+  [d limit]
+  (<= (double d) (* 1.0001 (double limit))))
+
 (defn- contains-point?
   "Whether point `p` ([x y z]) lies inside the segment of measured map
   `y`."
@@ -451,7 +482,7 @@
                   t #(world-triangles (:geom %) [0.0 0.0 0.0] 1.0)]
               (gap (t x) (t y) (mapv #(- (double %) r) p) (mapv #(+ (double %) r) p))))]
     {:inside (:name y) :depth dy :gap g
-     :near? (and (<= g allowed) (<= dx (+ dy g allowed)))}))
+     :near? (and (at-most? g allowed) (at-most? dx (+ dy g allowed)))}))
 
 (defn- far-message
   [joint-name a b outside allowed {:keys [inside depth gap]}]
@@ -493,7 +524,7 @@
          near (into [a b] rivals)
          allowed (into {} (for [{:keys [name geom]} [a b]]
                             [name (* 0.5 (double (first (segment-sides geom))))]))
-         beyond (filter #(> (double (:distance %)) (double (allowed (:name %)))) [a b])
+         beyond (remove #(at-most? (:distance %) (allowed (:name %))) [a b])
          ;; never far from a segment it lies inside; judged from that one's surface
          holders (when (and point (seq beyond)) (filterv #(contains-point? point %) [a b]))
          left (remove (set holders) beyond)

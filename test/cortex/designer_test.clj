@@ -325,6 +325,19 @@
       (is (re-find #"joint \"right_ankle_y\" lies 0\.0\d+ inside right_shin and 0\.\d+ from right_foot"
                    (str (some-> e .getMessage)))))))
 
+(deftest strangers-from-a-urdf-robot
+  (let [file "urdf-two-joint-robot.blend"
+        want (get-in (read-json (slurp (str strangers "urdf.json"))) ["files" file "joints"])
+        {:keys [joints warnings]} (body/report (body/body! (stranger file)))]
+    (is (= [] (mapv :kind warnings)))
+    (is (= (pairs-of want) (pairs-of joints))))
+  (let [c (stranger "urdf-two-joint-robot.blend")
+        _ (.move (.getChild c "joint_1") 0 0.05 0)
+        e (try (body/body! c) nil (catch clojure.lang.ExceptionInfo e e))]
+    (is (= [[:far-joint "joint_1"]] (mapv (juxt :kind :joint) (:doubts (ex-data e)))))
+    (is (re-find #"joint \"joint_1\" is 0\.0250 from link_01_cyl and 0\.0750 from base_link, more than half the thinnest side of base_link \(0\.0250\): it lies outside"
+                 (str (some-> e .getMessage))))))
+
 (deftest mujocos-pendulum-keeps-pi-to-six-places
   (let [c (stranger "inverted_pendulum.blend")
         [lowest] (drops/extent c)
