@@ -13,6 +13,7 @@
             [cortex.nearest :as nearest]
             [cortex.rigid-body :as rigid-body]
             [cortex.segment :as segment]
+            [cortex.sense :as sense]
             [cortex.strength :as strength]
             [cortex.vision :as vision])
   (:import (com.jme3.bullet.control RigidBodyControl)
@@ -89,6 +90,20 @@
                           :kept? false))))
         geoms ids))
 
+(defn- modifier-warnings
+  "A warning for each segment of `creature` whose object shows modifiers
+  the reader did not apply (see cortex.sense/modifiers-key)."
+  [^Node creature]
+  (vec (for [^Geometry g (segment/segments creature)
+             :let [ms (sense/meta-data g sense/modifiers-key)]
+             :when (seq ms)
+             :let [name (segment/segment-name g)]]
+         {:kind :modifiers :segment name :modifiers (vec ms) :warning? true
+          :message (str "segment " (pr-str name) " is built from its base mesh, without its modifiers ("
+                        (str/join ", " (map #(str (:name %) ": " (:kind %)) ms))
+                        "), which is not the shape Blender shows;"
+                        " apply them in Blender (Object > Apply > All Modifiers) to build that")})))
+
 (defn- measure-joint
   "Where joint empty `marker` is and which segments it is nearest."
   [index tol ^Spatial marker]
@@ -105,6 +120,7 @@
                 (if (= 1 (count doubts)) " doubt" " doubts")
                 " about its joints:\n"
                 (str/join "\n" (map #(str "- " (:message %)) doubts))
+                (str/join (map #(str "\n(note: " (:message %) ")") (modifier-warnings creature)))
                 "\n(to build it anyway, (body! creature {:strict? false}))")
            {:creature (.getName creature) :doubts doubts}))
 
@@ -263,7 +279,9 @@
                :joints (:joints js [])
                :eyes (or eyes [])
                :doubts (segment/plain (:doubts js []))
-               :warnings (segment/plain (into (vec (:warnings js [])) (:warnings tab)))})
+               :warnings (segment/plain (-> (modifier-warnings creature)
+                                              (into (:warnings js []))
+                                              (into (:warnings tab))))})
         tab? (assoc :constraints (:constraints tab)
                     :world (segment/plain (:world tab))
                     :joint-order (vec (:joint-order tab)))))))

@@ -5,7 +5,7 @@
 
   Entry points: `meta-data` (an object's custom property),
   `sense-nodes` (the markers under a named parent), `camera-key`,
-  `rigid-body-key`, `constraint-key`, `world-key`."
+  `rigid-body-key`, `constraint-key`, `world-key`, `modifiers-key`."
   (:import (com.jme3.scene Geometry Node Spatial)))
 
 (set! *warn-on-reflection* true)
@@ -40,6 +40,13 @@
   "The user data under which the scene's Node carries its Rigid Body
   World."
   "blender-rigid-body-world")
+
+(def modifiers-key
+  "The user data under which a mesh object's Node lists the modifiers
+  the reader did not apply that Blender shows and that can move the
+  mesh's vertices: a vector of {:name :kind} (see
+  cortex.blender.scene's modifiers)."
+  "blender-modifiers")
 
 (defn sense-nodes
   "A function of a creature that returns the children of the creature's

@@ -139,7 +139,7 @@
                              (vec (.toArray (.getWorldTranslation o) nil)) 1e-4))
                  (is (close? (rotation-rows (.getWorldRotation t))
                              (rotation-rows (.getWorldRotation o)) 1e-4))
-                 (when (zero? (long (modifiers name 0)))
+                 (when (empty? (modifiers name))
                    (is (= (triangles t) (triangles o)))))))))))))
 
 (defn read-json
@@ -428,6 +428,35 @@
       (is (re-find #"no scene named \"Nope\"; the file has \[\"Empty\" \"Game\" \"Menu\"\]"
                    (try (blender/load-blender-model f {:scene "Nope"}) ""
                         (catch ExceptionInfo e (ex-message e))))))))
+
+(deftest modifiers-are-listed-and-warned-about
+  (doseq [dir ["test/fixtures/modifiers/" "test/fixtures/modifiers/b52/"]
+          :let [f (str dir "modifiers.blend")
+                theirs (into {} (map (juxt #(get % "name") identity))
+                             (get (read-json (slurp (str dir "modifiers.json"))) "objects"))
+                {:keys [objects warnings]} (:scene-data (blender/read-blend f))
+                root (blender/load-blender-model f)]]
+    (is (= (set (keys theirs)) (set (map :name objects))))
+    (doseq [{:keys [name modifiers]} objects
+            :let [t (get-in theirs [name "modifiers"])]]
+      (testing name
+        (is (= (mapv #(vector (get % "name") (get % "type") (get % "show_viewport")) t)
+               (mapv #(vector (:name %) (.toUpperCase ^String (:kind %)) (:viewport? %)) modifiers)))))
+    (is (= 4 (count (mapcat :modifiers objects))))
+    (testing "the base mesh: the torso spans x 0 to 0.5, where Blender shows -0.5 to 0.5"
+      (is (= [[0.0 0.5] [-0.5 0.5]]
+             (let [t (theirs "torso")]
+               [[(get-in t ["mesh" "bbox_min" 0]) (get-in t ["mesh" "bbox_max" 0])]
+                [(get-in t ["evaluated_bbox" 0 0]) (get-in t ["evaluated_bbox" 1 0])]])))
+      (let [xs (take-nth 3 (vec (:positions (:mesh (first (filter #(= "torso" (:name %)) objects))))))]
+        (is (= [0.0 0.5] [(double (apply min xs)) (double (apply max xs))]))))
+    (is (= [["torso" "Mirror: Mirror"] ["head" "Subdivision: Subsurf"]]
+           (for [w warnings :let [[_ o ms] (re-find #"object \"(\w+)\" has modifiers the reader does not apply \((.*)\): it loads as its base mesh" w)] :when o]
+             [o ms])))
+    (testing "on the object's node, for the body to say"
+      (is (= [{:name "Mirror" :kind "Mirror"}]
+             (sense/meta-data (.getChild ^Node root "torso") sense/modifiers-key)))
+      (is (nil? (sense/meta-data (.getChild ^Node root "tail") sense/modifiers-key))))))
 
 (def ^:dynamic *tmp*
   "Folder for the damaged files."

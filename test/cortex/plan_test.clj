@@ -123,3 +123,17 @@
         e (try (plan/build! hand p) nil (catch clojure.lang.ExceptionInfo e e))]
     (is (some? e))
     (is (re-find #"the plan's segment .* is not where the plan says" (ex-message e)))))
+
+(deftest modifiers-not-applied-are-said
+  (let [f "test/fixtures/modifiers/modifiers.blend"
+        e (try (body/body! (util/load-blender-model f)) nil
+               (catch clojure.lang.ExceptionInfo e e))
+        p (plan/plan (util/load-blender-model f) {:strict? false})]
+    (is (= [[:far-joint "hip"]] (mapv (juxt :kind :joint) (:doubts (ex-data e)))))
+    (is (re-find #"joint \"hip\" is 0\.0750 from tail and 0\.575 from torso" (str (ex-message e))))
+    (is (re-find #"\(note: segment \"torso\" is built from its base mesh, without its modifiers \(Mirror: Mirror\)"
+                 (str (ex-message e))))
+    (is (= [[:modifiers "torso" [{:name "Mirror" :kind "Mirror"}]]
+            [:modifiers "head" [{:name "Subdivision" :kind "Subsurf"}]]]
+           (mapv (juxt :kind :segment :modifiers) (filter #(= :modifiers (:kind %)) (:warnings p)))))
+    (is (= [:modifiers :modifiers :far-joint] (mapv :kind (:warnings p))))))

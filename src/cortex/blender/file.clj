@@ -497,10 +497,12 @@
     (+ (.offset r) (long (:offset fi)))))
 
 (defn list-seq
-  "The structs of a ListBase (`first`, then each one's `next`), typed by
-  their blocks or as `type-name`. Stops at NULL, at a dangling pointer
-  and at a link already seen, so cycles end; never longer than the
-  file has blocks."
+  "The structs of a ListBase (`first`, then each one's `next`: the
+  pointer every element starts with, its own or that of the struct it
+  begins with, as a Mirror modifier's struct begins with ModifierData),
+  typed by their blocks or as `type-name`. Stops at NULL, at a dangling
+  pointer and at a link already seen, so cycles end; never longer than
+  the file has blocks."
   ([bf listbase] (list-seq bf listbase nil))
   ([bf listbase type-name]
    (let [limit (count (:blocks bf))]
@@ -508,7 +510,7 @@
        (let [r (deref-ptr bf ptr type-name)]
          (if (or (nil? r) (seen (.offset ^Ref r)) (>= (count out) limit))
            out
-           (recur (fget r "next") (conj seen (.offset ^Ref r)) (conj out r))))))))
+           (recur (read-ptr bf (.offset ^Ref r) (.group ^Ref r)) (conj seen (.offset ^Ref r)) (conj out r))))))))
 
 (defn blocks-with-code
   "The blocks whose code is `code` (\"OB\", \"ME\", \"SC\", ...)."

@@ -10,6 +10,7 @@
   (:require [cortex.blender.math :as m]
             [cortex.blender.mesh :as mesh]
             [cortex.blender.rigid-body :as physics]
+            [cortex.blender.scene :as scene]
             [cortex.sense :as sense]
             [cortex.util :as util :refer [vec3]])
   (:import [com.jme3.scene Node Geometry Mesh VertexBuffer$Type Spatial]
@@ -258,7 +259,9 @@
   LIGHT, CAMERA, ...) unless a property of that name exists, plus the
   object's Blender physics (see cortex.blender.rigid-body/user-data),
   as it is, and a camera's settings (see
-  cortex.blender.scene/camera-data) under cortex.sense/camera-key. The scene Node carries the scene's Rigid Body World, when
+  cortex.blender.scene/camera-data) under cortex.sense/camera-key, and
+  a mesh's unapplied modifiers (see cortex.blender.scene/unapplied)
+  under cortex.sense/modifiers-key. The scene Node carries the scene's Rigid Body World, when
   it has one, as user data cortex.blender.rigid-body/world-key.
   Materials are made with asset manager `am` (none when nil)."
   ^Node [am root-name sd]
@@ -273,7 +276,8 @@
                           (let [n (Node. (str (:name o)))]
                             (set-user-data! n (:properties o))
                             (keep-user-data! n (:physics o))
-                            (keep-user-data! n {sense/camera-key (:camera o)})
+                            (keep-user-data! n {sense/camera-key (:camera o)
+                                                sense/modifiers-key (not-empty (scene/unapplied o))})
                             (when-not (contains? (:properties o) "blender-type")
                               (.setUserData n "blender-type" (str (:type o))))
                             n)]))]

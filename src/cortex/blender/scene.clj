@@ -359,6 +359,41 @@
      {:poses {} :warnings []}
      (if arm (bones bf arm) []))))
 
+(def ^:private shapeless-modifiers
+  "Kinds of modifier that leave a mesh's vertices where they are."
+  #{"Collision" "Triangulate" "ParticleSystem" "NormalEdit" "WeightedNormal"
+    "UVProject" "UVWarp" "WeightVGEdit" "WeightVGMix" "WeightVGProximity"})
+
+(defn modifiers
+  "The modifiers of Object struct `ob`, in their order: {:name, :kind
+  (its struct's name less ModifierData), :viewport? (shown in the
+  viewport), :reshapes? (whether it can move the mesh's vertices)}."
+  [bf ob]
+  (vec (for [md (f/list-seq bf (f/fget ob "modifiers"))
+             :let [kind (str/replace (str (:name (:layout md))) #"ModifierData$" "")]]
+         {:name (str (f/fget-in md ["modifier" "name"]))
+          :kind kind
+          :viewport? (odd? (long (or (f/fget-in md ["modifier" "mode"]) 0)))
+          :reshapes? (not (shapeless-modifiers kind))})))
+
+(defn unapplied
+  "The modifiers of object `o` (as scene-data gives it) that Blender
+  shows and that can reshape its mesh, which the reader did not apply:
+  [{:name :kind}], empty for an object that is no mesh."
+  [{:keys [type modifiers]}]
+  (if (= type "MESH")
+    (vec (for [m modifiers :when (and (:viewport? m) (:reshapes? m))]
+           (select-keys m [:name :kind])))
+    []))
+
+(defn- modifier-warning
+  [{:keys [name] :as o}]
+  (when-let [ms (seq (unapplied o))]
+    (str "object " (pr-str name) " has modifiers the reader does not apply ("
+         (str/join ", " (map #(str (:name %) ": " (:kind %)) ms))
+         "): it loads as its base mesh, as Blender draws it with them off;"
+         " apply them in Blender (Object > Apply > All Modifiers) to load what Blender shows")))
+
 (defn- bone-matrix
   "For an object parented to a bone (partype 7): the bone's pose in its
   armature's frame (see `armature-poses`), moved from the bone's head
@@ -399,7 +434,7 @@
      :properties (properties bf ob)
      :materials (material-slots bf ob data)
      :color (or (f/fget ob "col") [1.0 1.0 1.0 1.0])
-     :modifiers (count (f/list-seq bf (f/fget ob "modifiers")))
+     :modifiers (modifiers bf ob)
      :physics (physics/user-data bf ob)
      :camera (when (and (= type "CAMERA") data (= "Camera" (:name (:layout data))))
                (camera-data data))
@@ -522,8 +557,8 @@
   the one the file was saved showing; a saved scene that lists no
   objects gives every object the file holds (files that predate
   scenes' object lists). :warnings says what the reader could not do
-  as Blender would (bones whose saved pose is used) and when the scene
-  has no meshes but another has."
+  as Blender would (bones whose saved pose is used, modifiers not
+  applied) and when the scene has no meshes but another has."
   ([bf] (scene-data bf {}))
   ([bf opts]
    (let [[sc scene-warnings] (choose-scene bf opts)
@@ -539,7 +574,8 @@
          names (into {} (map (juxt :key :name)) all)]
      {:scene (if sc (f/id-name sc) "Scene")
       :rigid-body-world (when sc (physics/rigid-body-world bf sc))
-      :warnings (vec (distinct (concat scene-warnings (mapcat (comp :warnings :bone) all))))
+      :warnings (vec (distinct (concat scene-warnings (mapcat (comp :warnings :bone) all)
+                                       (keep modifier-warning infos))))
       :objects (mapv (fn [{:keys [parent-key mesh-ref] :as o}]
                        (-> o
                            (assoc :world (worlds (:key o))
