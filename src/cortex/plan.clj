@@ -100,7 +100,7 @@
              :let [name (segment/segment-name g)]]
          {:kind :modifiers :segment name :modifiers (vec ms) :warning? true
           :message (str "segment " (pr-str name) " is built from its base mesh, without its modifiers ("
-                        (str/join ", " (map #(str (:name %) ": " (:kind %)) ms))
+                        (str/join ", " (map #(str (:name %) ": " (:kind %) (some->> (:why %) (str ", "))) ms))
                         "), which is not the shape Blender shows;"
                         " apply them in Blender (Object > Apply > All Modifiers) to build that")})))
 

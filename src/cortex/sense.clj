@@ -44,8 +44,8 @@
 (def modifiers-key
   "The user data under which a mesh object's Node lists the modifiers
   the reader did not apply that Blender shows and that can move the
-  mesh's vertices: a vector of {:name :kind} (see
-  cortex.blender.scene's modifiers)."
+  mesh's vertices: a vector of {:name :kind}, with :why for a Mirror
+  (see cortex.blender.scene's unapplied)."
   "blender-modifiers")
 
 (defn sense-nodes

@@ -124,16 +124,20 @@
     (is (some? e))
     (is (re-find #"the plan's segment .* is not where the plan says" (ex-message e)))))
 
-(deftest modifiers-not-applied-are-said
+(deftest modifiers-are-applied-or-said
   (let [f "test/fixtures/modifiers/modifiers.blend"
         e (try (body/body! (util/load-blender-model f)) nil
                (catch clojure.lang.ExceptionInfo e e))
-        p (plan/plan (util/load-blender-model f) {:strict? false})]
-    (is (= [[:far-joint "hip"]] (mapv (juxt :kind :joint) (:doubts (ex-data e)))))
-    (is (re-find #"joint \"hip\" is 0\.0750 from tail and 0\.575 from torso" (str (ex-message e))))
-    (is (re-find #"\(note: segment \"torso\" is built from its base mesh, without its modifiers \(Mirror: Mirror\)"
+        p (plan/plan (util/load-blender-model f) {:strict? false})
+        volume (into {} (map (juxt :name :volume)) (:segments (body/report (body/body! (util/load-blender-model f)
+                                                                                        {:strict? false}))))]
+    (is (= [[:far-joint "fin-root"]] (mapv (juxt :kind :joint) (:doubts (ex-data e)))))
+    (is (re-find #"joint \"fin-root\" is 0\.0250 from torso and 0\.100 from fin" (str (ex-message e))))
+    (is (re-find #"\(note: segment \"fin\" is built from its base mesh, without its modifiers \(Mirror: Mirror, it bisects\)"
                  (str (ex-message e))))
-    (is (= [[:modifiers "torso" [{:name "Mirror" :kind "Mirror"}]]
+    (is (= [[:modifiers "fin" [{:name "Mirror" :kind "Mirror" :why "it bisects"}]]
             [:modifiers "head" [{:name "Subdivision" :kind "Subsurf"}]]]
            (mapv (juxt :kind :segment :modifiers) (filter #(= :modifiers (:kind %)) (:warnings p)))))
-    (is (= [:modifiers :modifiers :far-joint] (mapv :kind (:warnings p))))))
+    (is (= [:modifiers :modifiers :far-joint] (mapv :kind (:warnings p))))
+    (is (< (Math/abs (- (double (volume "torso")) 0.12)) 1e-6) (str "torso " (volume "torso")))
+    (is (< (Math/abs (- (double (volume "leg")) 0.008)) 1e-6) (str "leg " (volume "leg")))))

@@ -143,6 +143,19 @@
   (- (+ (* a (- (* e i) (* f h))) (* c (- (* d h) (* e g))))
      (* b (- (* d i) (* f g)))))
 
+(defn affine-inverse
+  "The inverse of 4x4 affine matrix `m` (its 3x3 by cofactors over its
+  determinant), or nil when the 3x3 is singular."
+  [m]
+  (let [[[a b c] [d e f] [g h i]] (mat4->mat3 m)
+        det (double (det3 [[a b c] [d e f] [g h i]]))]
+    (when-not (< (Math/abs det) 1e-12)
+      (let [inv (mapv (fn [row] (mapv #(/ (double %) det) row))
+                      [[(- (* e i) (* f h)) (- (* c h) (* b i)) (- (* b f) (* c e))]
+                       [(- (* f g) (* d i)) (- (* a i) (* c g)) (- (* c d) (* a f))]
+                       [(- (* d h) (* e g)) (- (* b g) (* a h)) (- (* a e) (* b d))]])]
+        (mat3->mat4 inv (mapv - (mat-vec inv (translation m))))))))
+
 (defn- norm [v] (Math/sqrt (reduce + (map * v v))))
 
 (defn- sub [a b] (mapv - a b))

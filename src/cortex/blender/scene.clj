@@ -364,33 +364,81 @@
   #{"Collision" "Triangulate" "ParticleSystem" "NormalEdit" "WeightedNormal"
     "UVProject" "UVWarp" "WeightVGEdit" "WeightVGMix" "WeightVGProximity"})
 
+(defn- mirror-settings
+  "A Mirror modifier's settings from its struct `md`: :axes (x y z,
+  each mirrored or not), :merge?, :tolerance (how near a vertex and its
+  copy merge), :bisect? (whether it cuts the mesh at the plane first)
+  and :object-key (the object across whose axes it mirrors, or nil for
+  the object's own). Bits of its flag as DNA_modifier_types.h has them."
+  [bf md]
+  (let [flag (long (or (f/fget md "flag") 0))
+        bit? #(pos? (bit-and flag (long %)))]
+    {:axes (mapv bit? [8 16 32])
+     :merge? (not (bit? 128))
+     :tolerance (double (or (f/fget md "tolerance") 0.001))
+     :bisect? (boolean (some bit? [256 512 1024]))
+     :object-key (:offset (f/deref-ptr bf (f/fget md "mirror_ob") "Object"))}))
+
 (defn modifiers
   "The modifiers of Object struct `ob`, in their order: {:name, :kind
   (its struct's name less ModifierData), :viewport? (shown in the
-  viewport), :reshapes? (whether it can move the mesh's vertices)}."
+  viewport), :reshapes? (whether it can move the mesh's vertices)},
+  and a Mirror's :mirror settings (see `mirror-settings`)."
   [bf ob]
   (vec (for [md (f/list-seq bf (f/fget ob "modifiers"))
              :let [kind (str/replace (str (:name (:layout md))) #"ModifierData$" "")]]
-         {:name (str (f/fget-in md ["modifier" "name"]))
-          :kind kind
-          :viewport? (odd? (long (or (f/fget-in md ["modifier" "mode"]) 0)))
-          :reshapes? (not (shapeless-modifiers kind))})))
+         (cond-> {:name (str (f/fget-in md ["modifier" "name"]))
+                  :kind kind
+                  :viewport? (odd? (long (or (f/fget-in md ["modifier" "mode"]) 0)))
+                  :reshapes? (not (shapeless-modifiers kind))}
+           (= kind "Mirror") (assoc :mirror (mirror-settings bf md))))))
+
 
 (defn unapplied
   "The modifiers of object `o` (as scene-data gives it) that Blender
-  shows and that can reshape its mesh, which the reader did not apply:
-  [{:name :kind}], empty for an object that is no mesh."
+  shows and that can reshape its mesh, which the reader did not apply
+  (see `with-mirrors`): [{:name :kind}], with :why for a Mirror, empty
+  for an object that is no mesh."
   [{:keys [type modifiers]}]
   (if (= type "MESH")
-    (vec (for [m modifiers :when (and (:viewport? m) (:reshapes? m))]
-           (select-keys m [:name :kind])))
+    (vec (for [{:keys [mirror] :as m} modifiers
+               :when (and (:viewport? m) (:reshapes? m) (not (:applied? m)))]
+           (cond-> (select-keys m [:name :kind])
+             (:bisect? mirror) (assoc :why "it bisects")
+             (and mirror (not (:bisect? mirror))) (assoc :why "its mirror object is not here"))))
     []))
+
+(defn- with-mirrors
+  "Object `o` with its `mesh` mirrored by each Mirror modifier Blender
+  shows, in order, each marked :applied?; `worlds` gives objects' world
+  matrices by key. A Mirror that bisects, or whose mirror object has no
+  world matrix here, is left unapplied."
+  [o mesh worlds]
+  (let [world (worlds (:key o))
+        step (fn [[mesh done] {:keys [viewport? mirror] :as md}]
+               (let [{:keys [axes merge? tolerance bisect? object-key]} mirror
+                     ;; into the frame mirrored across, and back
+                     to (when (and world object-key (worlds object-key) (m/affine-inverse world))
+                          (m/mat-mul (m/affine-inverse world) (worlds object-key)))
+                     back (when to (m/affine-inverse to))]
+                 (if (and mesh viewport? mirror (not bisect?) world (or (nil? object-key) back))
+                   [(reduce (fn [mesh k]
+                              (let [flip (fn [p] (update (vec p) k -))
+                                    reflect (if to
+                                              #(vec (take 3 (m/mat-vec to (flip (m/mat-vec back (conj (vec %) 1.0))))))
+                                              flip)]
+                                (mesh/mirrored mesh reflect merge? tolerance)))
+                            mesh (filter #(nth axes %) [0 1 2]))
+                    (conj done (assoc md :applied? true))]
+                   [mesh (conj done md)])))
+        [mesh mods] (reduce step [mesh []] (:modifiers o))]
+    (assoc o :mesh mesh :modifiers mods)))
 
 (defn- modifier-warning
   [{:keys [name] :as o}]
   (when-let [ms (seq (unapplied o))]
     (str "object " (pr-str name) " has modifiers the reader does not apply ("
-         (str/join ", " (map #(str (:name %) ": " (:kind %)) ms))
+         (str/join ", " (map #(str (:name %) ": " (:kind %) (some->> (:why %) (str ", "))) ms))
          "): it loads as its base mesh, as Blender draws it with them off;"
          " apply them in Blender (Object > Apply > All Modifiers) to load what Blender shows")))
 
@@ -571,17 +619,18 @@
          worlds (world-matrices all)
          infos (vec (take (count infos) all))
          keys (set (map :key infos))
-         names (into {} (map (juxt :key :name)) all)]
+         names (into {} (map (juxt :key :name)) all)
+         objects (mapv (fn [{:keys [parent-key mesh-ref] :as o}]
+                         (-> o
+                             (assoc :world (worlds (:key o))
+                                    :bone-matrix (:matrix (:bone o))
+                                    :parent-key (when (keys parent-key) parent-key)
+                                    :parent (names parent-key))
+                             (with-mirrors (when mesh-ref (mesh/mesh-data bf mesh-ref)) worlds)
+                             (dissoc :mesh-ref :bone)))
+                       infos)]
      {:scene (if sc (f/id-name sc) "Scene")
       :rigid-body-world (when sc (physics/rigid-body-world bf sc))
       :warnings (vec (distinct (concat scene-warnings (mapcat (comp :warnings :bone) all)
-                                       (keep modifier-warning infos))))
-      :objects (mapv (fn [{:keys [parent-key mesh-ref] :as o}]
-                       (-> o
-                           (assoc :world (worlds (:key o))
-                                  :bone-matrix (:matrix (:bone o))
-                                  :parent-key (when (keys parent-key) parent-key)
-                                  :parent (names parent-key)
-                                  :mesh (when mesh-ref (mesh/mesh-data bf mesh-ref)))
-                           (dissoc :mesh-ref :bone)))
-                     infos)})))
+                                       (keep modifier-warning objects))))
+      :objects objects})))
