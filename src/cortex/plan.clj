@@ -99,10 +99,10 @@
              :when (seq ms)
              :let [name (segment/segment-name g)]]
          {:kind :modifiers :segment name :modifiers (vec ms) :warning? true
-          :message (str "segment " (pr-str name) " is built from its base mesh, without its modifiers ("
+          :message (str "segment " (pr-str name) " is built without its modifiers or shape keys ("
                         (str/join ", " (map #(str (:name %) ": " (:kind %) (some->> (:why %) (str ", "))) ms))
                         "), which is not the shape Blender shows;"
-                        " apply them in Blender (Object > Apply > All Modifiers) to build that")})))
+                        " apply them in Blender (Object > Convert > Mesh) to build that")})))
 
 (defn- measure-joint
   "Where joint empty `marker` is and which segments it is nearest."

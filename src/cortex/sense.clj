@@ -44,8 +44,9 @@
 (def modifiers-key
   "The user data under which a mesh object's Node lists the modifiers
   the reader did not apply that Blender shows and that can move the
-  mesh's vertices: a vector of {:name :kind}, with :why for a Mirror
-  (see cortex.blender.scene's unapplied)."
+  mesh's vertices, and its shape keys in use: a vector of {:name :kind},
+  with :why for a Mirror or a shape key (see cortex.blender.scene's
+  unapplied)."
   "blender-modifiers")
 
 (defn sense-nodes

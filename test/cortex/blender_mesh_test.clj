@@ -47,3 +47,26 @@
     (is (= [[0 1 2] [0 2 3] [0 3 4]]
            (mesh/triangulate (mapv #(double-array [(Math/cos %) (Math/sin %) 0.0])
                                    (map #(* % 2 (/ Math/PI 5)) (range 5))))))))
+
+(deftest a-mirror-shares-what-lies-on-its-plane
+  (let [md {:positions (float-array [0 0 0, 0 1 0, 0 1 1, 0 0 1, 0.0004 2 0, 1 2 0, 1 2 1])
+            :starts (int-array [0 4]) :counts (int-array [4 3]) :corners (int-array [0 1 2 3 4 5 6])
+            :mats (int-array [0 1]) :smooth (boolean-array [false true]) :uvs nil}
+        out (plain (mesh/mirrored md (fn [[x y z]] [(- x) y z]) true 0.001))
+        corner (fn [f k] (let [i ((:corners out) (+ ((:starts out) f) k))]
+                           (subvec (:positions out) (* 3 i) (+ 3 (* 3 i)))))]
+    (is (= 9 (quot (count (:positions out)) 3)) "seven vertices and the copies of the two off the plane")
+    (is (= [0.0 2.0 0.0] (mapv double (subvec (:positions out) 12 15))) "the corner moved onto the plane")
+    (is (= [4 3 3] (:counts out)) "the square's copy left out")
+    (is (= [0 1 1] (:mats out)))
+    (is (= [[0.0 2.0 0.0] [-1.0 2.0 1.0] [-1.0 2.0 0.0]] (mapv #(mapv double (corner 2 %)) [0 1 2]))
+        "the copy keeps its first corner and runs backwards"))
+  (testing "without merging, every vertex and face is copied"
+    (let [md {:positions (float-array [0 0 0, 1 0 0, 0 1 0]) :starts (int-array [0]) :counts (int-array [3])
+              :corners (int-array [0 1 2]) :mats (int-array [0]) :smooth (boolean-array [false])
+              :uvs (float-array [0 0 1 0 0 1])}
+          out (plain (mesh/mirrored md (fn [[x y z]] [(- x) y z]) false 0.001))]
+      (is (= 6 (quot (count (:positions out)) 3)))
+      (is (= [3 3] (:counts out)))
+      (is (= [0 1 2 3 5 4] (:corners out)))
+      (is (= [0.0 0.0 1.0 0.0 0.0 1.0 0.0 0.0 0.0 1.0 1.0 0.0] (mapv double (:uvs out)))))))

@@ -9,6 +9,7 @@
             [cortex.blender.file :as file]
             [cortex.blender.math :as m]
             [cortex.blender.mesh :as mesh]
+            [cortex.blender.scene :as scene]
             [cortex.sense :as sense]
             [cortex.util :as util])
   (:import [com.jme3.scene Spatial Node Geometry]
@@ -469,7 +470,7 @@
       (is (= 12 (count (get-in theirs ["torso" "evaluated_vertices"]))))
       (is (= [["fin" "Mirror: Mirror, it bisects"] ["head" "Subdivision: Subsurf"]]
              (for [w warnings
-                   :let [[_ o ms] (re-find #"object \"(\w+)\" has modifiers the reader does not apply \((.*)\): it loads as its base mesh" w)]
+                   :let [[_ o ms] (re-find #"object \"(\w+)\" has modifiers or shape keys the reader does not apply \((.*)\): it loads as Blender draws it with them off" w)]
                    :when o]
                [o ms])))
       (testing "on the object's node, for the body to say"
@@ -477,6 +478,41 @@
                (sense/meta-data (.getChild ^Node root "fin") sense/modifiers-key)))
         (is (nil? (sense/meta-data (.getChild ^Node root "torso") sense/modifiers-key)))
         (is (nil? (sense/meta-data (.getChild ^Node root "tail") sense/modifiers-key)))))))
+
+(defn- same-vertices?
+  "Whether vertex lists `as` and `bs` ([x y z] each) are the same
+  multiset, coordinates within 1.01e-5."
+  [as bs]
+  (and (= (count as) (count bs))
+       (empty? (reduce (fn [left a]
+                         (if-let [b (first (filter (fn [b] (every? #(<= (Math/abs (- (double (nth a %)) (double (nth b %)))) 1.01e-5)
+                                                                   [0 1 2]))
+                                                   left))]
+                           (let [i (.indexOf ^java.util.List left b)] (into (subvec left 0 i) (subvec left (inc i))))
+                           (reduced [a])))
+                       (vec bs) as))))
+
+(deftest strangers-mirrors-are-blenders
+  (let [dir "test/fixtures/modifiers/strangers/"
+        files (sort (filter #(.endsWith ^String % ".evaluated.json") (.list (io/file dir))))]
+    (is (= 24 (count files)))
+    (doseq [j files
+            :let [oracle (read-json (slurp (str dir j)))
+                  {:keys [objects warnings]} (:scene-data (blender/read-blend (str dir (get oracle "file"))))
+                  ours (into {} (map (juxt :name identity)) objects)]
+            t (get oracle "objects")
+            :let [name (get t "name") o (ours name)
+                  said? (some #(.contains ^String % (str "object " (pr-str name) " ")) warnings)]]
+      (testing (str j " " name)
+        (is (some? o))
+        (if (empty? (scene/unapplied o))
+          (do (is (same-vertices? (get t "vertices") (partition 3 (vec (:positions (:mesh o)))))
+                  "the vertices Blender shows")
+              (when-not (some #(= "TRIANGULATE" (get % "type")) (get t "modifiers"))
+                (is (= (get t "polygon_count") (count (:counts (:mesh o)))))))
+          (is said? "what is not applied is said"))
+        (when (:constrained? o)
+          (is said? "a constrained object is said"))))))
 
 (def ^:dynamic *tmp*
   "Folder for the damaged files."

@@ -133,7 +133,7 @@
                                                                                         {:strict? false}))))]
     (is (= [[:far-joint "fin-root"]] (mapv (juxt :kind :joint) (:doubts (ex-data e)))))
     (is (re-find #"joint \"fin-root\" is 0\.0250 from torso and 0\.100 from fin" (str (ex-message e))))
-    (is (re-find #"\(note: segment \"fin\" is built from its base mesh, without its modifiers \(Mirror: Mirror, it bisects\)"
+    (is (re-find #"\(note: segment \"fin\" is built without its modifiers or shape keys \(Mirror: Mirror, it bisects\)"
                  (str (ex-message e))))
     (is (= [[:modifiers "fin" [{:name "Mirror" :kind "Mirror" :why "it bisects"}]]
             [:modifiers "head" [{:name "Subdivision" :kind "Subsurf"}]]]

@@ -501,37 +501,44 @@
 (defn mirrored
   "Mesh data `mesh` (see `mesh-data`) and a mirrored copy of it: vertex
   i's copy is (reflect [x y z]) of it; with `merge?`, a vertex nearer
-  than `tolerance` to its own copy is its own copy. Each copied face
-  keeps its first corner and runs through the others backwards; the
-  copies keep their faces' material slots, smoothing and UVs."
+  than `tolerance` to its own copy is its own copy, moved half way to
+  it, and a copied face whose corners are all such is left out. Each
+  copied face keeps its first corner and runs through the others
+  backwards; the copies keep their faces' material slots, smoothing and
+  UVs."
   [{:keys [^floats positions ^ints starts ^ints counts ^ints corners ^ints mats
            ^booleans smooth ^floats uvs] :as mesh}
    reflect merge? tolerance]
   (let [n (quot (alength positions) 3)
         at (fn [i k] (double (aget positions (+ (* 3 (long i)) (long k)))))
-        copies (mapv #(mapv double (reflect [(at % 0) (at % 1) (at % 2)])) (range n))
-        own? (fn [i] (and merge?
-                          (< (reduce + (map #(let [d (- (at i %1) (double %2))] (* d d))
-                                            [0 1 2] (copies i)))
-                             (* (double tolerance) (double tolerance)))))
+        originals (mapv (fn [i] [(at i 0) (at i 1) (at i 2)]) (range n))
+        copies (mapv #(mapv double (reflect %)) originals)
+        own (mapv (fn [v c] (and merge? (< (reduce + (map #(let [d (- (double %1) (double %2))] (* d d)) v c))
+                                           (* (double tolerance) (double tolerance)))))
+                  originals copies)
         ;; where each vertex's copy is: itself, or the next new vertex
         [copy-of added] (reduce (fn [[m added] i]
-                                  (if (own? i)
+                                  (if (own i)
                                     [(conj m i) added]
                                     [(conj m (+ n (count added))) (conj added i)]))
                                 [[] []] (range n))
-        nf (alength counts)
-        ;; the corners of face f, in its copy's order
+        ;; the faces copied, and the corners of each in its copy's order
+        kept (filterv (fn [f] (let [s (aget starts (int f))]
+                                (not-every? #(own (aget corners (+ s (long %)))) (range (aget counts (int f))))))
+                      (range (alength counts)))
         order (fn [f] (let [s (aget starts (int f)) c (aget counts (int f))]
                         (cons s (map #(+ s (- c 1 (long %))) (range (dec c))))))
-        copied (vec (mapcat order (range nf)))]
+        copied (vec (mapcat order kept))
+        kept-counts (map #(aget counts (int %)) kept)]
     (assoc mesh
-           :positions (float-array (concat positions (mapcat copies added)))
-           :starts (int-array (concat starts (butlast (reductions + (alength corners) counts))))
-           :counts (int-array (concat counts counts))
+           :positions (float-array (concat (mapcat (fn [v c o] (if o (map #(/ (+ (double %1) (double %2)) 2.0) v c) v))
+                                                   originals copies own)
+                                           (mapcat copies added)))
+           :starts (int-array (concat starts (butlast (reductions + (alength corners) kept-counts))))
+           :counts (int-array (concat counts kept-counts))
            :corners (int-array (concat corners (map #(copy-of (aget corners (int %))) copied)))
-           :mats (int-array (concat mats mats))
-           :smooth (boolean-array (concat smooth smooth))
+           :mats (int-array (concat mats (map #(aget mats (int %)) kept)))
+           :smooth (boolean-array (concat smooth (map #(aget smooth (int %)) kept)))
            :uvs (when uvs
                   (float-array (concat uvs (mapcat #(vector (aget uvs (* 2 (long %)))
                                                             (aget uvs (+ 1 (* 2 (long %)))))

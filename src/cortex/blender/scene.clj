@@ -390,23 +390,39 @@
          (cond-> {:name (str (f/fget-in md ["modifier" "name"]))
                   :kind kind
                   :viewport? (odd? (long (or (f/fget-in md ["modifier" "mode"]) 0)))
-                  :reshapes? (not (shapeless-modifiers kind))}
+                  ;; an Armature modifier without its armature does nothing
+                  :reshapes? (not (or (shapeless-modifiers kind)
+                                      (and (= kind "Armature") (nil? (f/fget md "object")))))}
            (= kind "Mirror") (assoc :mirror (mirror-settings bf md))))))
 
 
 (defn unapplied
   "The modifiers of object `o` (as scene-data gives it) that Blender
   shows and that can reshape its mesh, which the reader did not apply
-  (see `with-mirrors`): [{:name :kind}], with :why for a Mirror, empty
-  for an object that is no mesh."
-  [{:keys [type modifiers]}]
+  (see `with-mirrors`), and the shape keys in use, which it does not
+  apply either: [{:name :kind}], with :why for a Mirror and a shape key
+  (kind \"ShapeKey\"), empty for an object that is no mesh."
+  [{:keys [type modifiers shape-keys]}]
   (if (= type "MESH")
-    (vec (for [{:keys [mirror] :as m} modifiers
-               :when (and (:viewport? m) (:reshapes? m) (not (:applied? m)))]
-           (cond-> (select-keys m [:name :kind])
-             (:bisect? mirror) (assoc :why "it bisects")
-             (and mirror (not (:bisect? mirror))) (assoc :why "its mirror object is not here"))))
+    (into (vec (for [{:keys [mirror] :as m} modifiers
+                     :when (and (:viewport? m) (:reshapes? m) (not (:applied? m)))]
+                 (cond-> (select-keys m [:name :kind])
+                   (:bisect? mirror) (assoc :why "it bisects")
+                   (and mirror (not (:bisect? mirror))) (assoc :why "its mirror object is not here"))))
+          (for [{:keys [name value]} shape-keys]
+            {:name name :kind "ShapeKey" :why (format "at %.2f" (double value))}))
     []))
+
+(defn- shape-keys
+  "The shape keys of Mesh struct `mesh` that change what Blender shows:
+  [{:name :value}] for each key after the first (the basis) whose value
+  is not 0 and that is not muted (KEYBLOCK_MUTE)."
+  [bf mesh]
+  (let [key (f/deref-ptr bf (f/fget mesh "key") "Key")]
+    (vec (for [kb (rest (f/list-seq bf (f/fget key "block") "KeyBlock"))
+               :let [v (double (or (f/fget kb "curval") 0.0))]
+               :when (and (not (zero? v)) (even? (long (or (f/fget kb "flag") 0))))]
+           {:name (str (f/fget kb "name")) :value v}))))
 
 (defn- with-mirrors
   "Object `o` with its `mesh` mirrored by each Mirror modifier Blender
@@ -434,13 +450,23 @@
         [mesh mods] (reduce step [mesh []] (:modifiers o))]
     (assoc o :mesh mesh :modifiers mods)))
 
+(defn- constraint-warning
+  [{:keys [name constrained? stored-world]}]
+  (when constrained?
+    (str "object " (pr-str name) " has constraints, which the reader does not evaluate: "
+         (if stored-world
+           "it is placed by the world matrix the file saved, where Blender last drew it"
+           (str "the file keeps no world matrix (Blender 4.5 on), so it is placed by its own location,"
+                " rotation and scale; apply them in Blender (Object > Apply > Visual Transform)"
+                " to place it as Blender shows")))))
+
 (defn- modifier-warning
   [{:keys [name] :as o}]
   (when-let [ms (seq (unapplied o))]
-    (str "object " (pr-str name) " has modifiers the reader does not apply ("
+    (str "object " (pr-str name) " has modifiers or shape keys the reader does not apply ("
          (str/join ", " (map #(str (:name %) ": " (:kind %) (some->> (:why %) (str ", "))) ms))
-         "): it loads as its base mesh, as Blender draws it with them off;"
-         " apply them in Blender (Object > Apply > All Modifiers) to load what Blender shows")))
+         "): it loads as Blender draws it with them off;"
+         " apply them in Blender (Object > Convert > Mesh) to load what Blender shows")))
 
 (defn- bone-matrix
   "For an object parented to a bone (partype 7): the bone's pose in its
@@ -486,6 +512,8 @@
      :physics (physics/user-data bf ob)
      :camera (when (and (= type "CAMERA") data (= "Camera" (:name (:layout data))))
                (camera-data data))
+     :shape-keys (if (and (= type "MESH") data (= "Mesh" (:name (:layout data)))) (shape-keys bf data) [])
+     :constrained? (boolean (seq (f/list-seq bf (f/fget ob "constraints"))))
      :mesh-ref (when (and (= type "MESH") data (= "Mesh" (:name (:layout data)))) data)}))
 
 (defn- world-matrices
@@ -493,9 +521,10 @@
   local, as Blender's solve_parenting does for object parents, with the
   bone's matrix after the parent's for bone parents (partype 7). A
   parent cycle or a parent missing from `infos` counts as no parent.
-  Vertex parents (partype 5, 6) need the parent mesh evaluated; for
-  them, and for a bone that cannot be found, the world matrix the file
-  stores is used when it has one."
+  Vertex parents (partype 5, 6) need the parent mesh evaluated, and
+  an object's constraints (see `object-info`'s :constrained?) their
+  targets; for them, and for a bone that cannot be found, the world
+  matrix the file stores is used when it has one."
   [infos]
   (let [by-key (into {} (map (juxt :key identity)) infos)]
     (loop [todo (map :key infos) done {}]
@@ -509,11 +538,12 @@
                           (recur (:parent-key (by-key q)) (conj chain q) (conj seen q))))
                 done (reduce (fn [done q]
                                (let [{:keys [parent-key partype local parentinv stored-world
-                                             bone]} (by-key q)
+                                             bone constrained?]} (by-key q)
                                      bone-matrix (:matrix bone)
                                      pw (get done parent-key)]
                                  (assoc done q
                                         (cond
+                                          (and constrained? stored-world) stored-world
                                           (and pw bone-matrix)
                                           (m/mat-mul (m/mat-mul (m/mat-mul pw bone-matrix) parentinv) local)
                                           (and (#{5 6 7} partype) stored-world) stored-world
@@ -632,5 +662,6 @@
      {:scene (if sc (f/id-name sc) "Scene")
       :rigid-body-world (when sc (physics/rigid-body-world bf sc))
       :warnings (vec (distinct (concat scene-warnings (mapcat (comp :warnings :bone) all)
+                                       (keep constraint-warning objects)
                                        (keep modifier-warning objects))))
       :objects objects})))
