@@ -408,7 +408,7 @@
                      :when (and (:viewport? m) (:reshapes? m) (not (:applied? m)))]
                  (cond-> (select-keys m [:name :kind])
                    (:bisect? mirror) (assoc :why "it bisects")
-                   (and mirror (not (:bisect? mirror))) (assoc :why "its mirror object is not here"))))
+                   (and mirror (not (:bisect? mirror))) (assoc :why "its mirror object's frame is not known here"))))
           (for [{:keys [name value]} shape-keys]
             {:name name :kind "ShapeKey" :why (format "at %.2f" (double value))}))
     []))
@@ -427,8 +427,9 @@
 (defn- with-mirrors
   "Object `o` with its `mesh` mirrored by each Mirror modifier Blender
   shows, in order, each marked :applied?; `worlds` gives objects' world
-  matrices by key. A Mirror that bisects, or whose mirror object has no
-  world matrix here, is left unapplied."
+  matrices by key. A Mirror that bisects, or whose mirror object's frame
+  is not known here (no world matrix, or none that inverts), is left
+  unapplied."
   [o mesh worlds]
   (let [world (worlds (:key o))
         step (fn [[mesh done] {:keys [viewport? mirror] :as md}]
