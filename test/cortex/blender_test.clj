@@ -479,6 +479,16 @@
         (is (nil? (sense/meta-data (.getChild ^Node root "torso") sense/modifiers-key)))
         (is (nil? (sense/meta-data (.getChild ^Node root "tail") sense/modifiers-key)))))))
 
+(deftest a-mirror-past-the-budget-is-said
+  (binding [scene/*mirror-budget* 10]
+    (let [{:keys [objects warnings]} (:scene-data (blender/read-blend "test/fixtures/modifiers/modifiers.blend"))
+          torso (first (filter #(= "torso" (:name %)) objects))]
+      (is (= 8 (quot (count (:positions (:mesh torso))) 3)) "the half torso, as stored")
+      (is (= [{:name "Mirror" :kind "Mirror" :why "it would make more than 10 vertices"}]
+             (scene/unapplied torso)))
+      (is (some #(re-find #"object \"torso\" has modifiers or shape keys the reader does not apply \(Mirror: Mirror, it would make more than 10 vertices\)" %)
+                warnings)))))
+
 (defn- same-vertices?
   "Whether vertex lists `as` and `bs` ([x y z] each) are the same
   multiset, coordinates within 1.01e-5."

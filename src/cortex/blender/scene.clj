@@ -408,7 +408,8 @@
                      :when (and (:viewport? m) (:reshapes? m) (not (:applied? m)))]
                  (cond-> (select-keys m [:name :kind])
                    (:bisect? mirror) (assoc :why "it bisects")
-                   (and mirror (not (:bisect? mirror))) (assoc :why "its mirror object's frame is not known here"))))
+                   (and mirror (not (:bisect? mirror))) (assoc :why "its mirror object's frame is not known here")
+                   (:why m) (assoc :why (:why m)))))
           (for [{:keys [name value]} shape-keys]
             {:name name :kind "ShapeKey" :why (format "at %.2f" (double value))}))
     []))
@@ -424,12 +425,19 @@
                :when (and (not (zero? v)) (even? (long (or (f/fget kb "flag") 0))))]
            {:name (str (f/fget kb "name")) :value v}))))
 
+
+(def ^:dynamic *mirror-budget*
+  "The most vertices Mirror modifiers may make of one mesh: each axis
+  doubles it, so a stack of them (a damaged file may hold dozens) would
+  otherwise outgrow memory; Blender itself stalls long before."
+  4000000)
+
 (defn- with-mirrors
   "Object `o` with its `mesh` mirrored by each Mirror modifier Blender
   shows, in order, each marked :applied?; `worlds` gives objects' world
-  matrices by key. A Mirror that bisects, or whose mirror object's frame
-  is not known here (no world matrix, or none that inverts), is left
-  unapplied."
+  matrices by key. A Mirror that bisects, whose mirror object's frame
+  is not known here (no world matrix, or none that inverts), or that
+  would make more than `*mirror-budget*` vertices, is left unapplied."
   [o mesh worlds]
   (let [world (worlds (:key o))
         step (fn [[mesh done] {:keys [viewport? mirror] :as md}]
@@ -437,8 +445,12 @@
                      ;; into the frame mirrored across, and back
                      to (when (and world object-key (worlds object-key) (m/affine-inverse world))
                           (m/mat-mul (m/affine-inverse world) (worlds object-key)))
-                     back (when to (m/affine-inverse to))]
-                 (if (and mesh viewport? mirror (not bisect?) world (or (nil? object-key) back))
+                     back (when to (m/affine-inverse to))
+                     n (when mesh (quot (alength ^floats (:positions mesh)) 3))
+                     too-many? (and n (> (* n (long (Math/pow 2 (count (filter true? axes)))))
+                                         (long *mirror-budget*)))]
+                 (if (and mesh viewport? mirror (not bisect?) world (or (nil? object-key) back)
+                          (not too-many?))
                    [(reduce (fn [mesh k]
                               (let [flip (fn [p] (update (vec p) k -))
                                     reflect (if to
@@ -447,7 +459,9 @@
                                 (mesh/mirrored mesh reflect merge? tolerance)))
                             mesh (filter #(nth axes %) [0 1 2]))
                     (conj done (assoc md :applied? true))]
-                   [mesh (conj done md)])))
+                   [mesh (conj done (cond-> md
+                                      (and mirror viewport? too-many? (not bisect?))
+                                      (assoc :why (str "it would make more than " *mirror-budget* " vertices"))))])))
         [mesh mods] (reduce step [mesh []] (:modifiers o))]
     (assoc o :mesh mesh :modifiers mods)))
 
