@@ -461,26 +461,26 @@
   (<= (double d) (* 1.0001 (double limit))))
 
 (defn- contains-point?
-  "Whether point `p` ([x y z]) lies inside the segment of measured map
-  `y`."
-  [p y]
+  "Whether point `p` ([x y z]) lies inside the segment whose world
+  triangles are `ts`."
+  [p ts]
   (let [[px py pz] p]
-    (point-inside? (world-triangles (:geom y) [0.0 0.0 0.0] 1.0) px py pz)))
+    (point-inside? ts px py pz)))
 
 (defn- reach-from-inside
   "How segment `x` (a measured map) stands from point `p` inside segment
-  `y`: {:inside (y's name) :depth (p to y's surface) :gap (how near x
-  and y come around p) :near? (whether x comes within `allowed` of y's
-  surface there, and p is no farther from x than its depth, that gap
-  and `allowed` together)}."
-  [p x y allowed]
+  `y`, `triangles` giving a segment's world triangles: {:inside (y's
+  name) :depth (p to y's surface) :gap (how near x and y come around p)
+  :near? (whether x comes within `allowed` of y's surface there, and p
+  is no farther from x than its depth, that gap and `allowed`
+  together)}."
+  [p x y allowed triangles]
   (let [dx (double (:distance x)) dy (double (:distance y)) allowed (double allowed)
         ;; nearer than y's own surface, x reaches into y: they overlap there
         g (if (<= dx dy)
             0.0
-            (let [r (* 1.001 dx)
-                  t #(world-triangles (:geom %) [0.0 0.0 0.0] 1.0)]
-              (gap (t x) (t y) (mapv #(- (double %) r) p) (mapv #(+ (double %) r) p))))]
+            (let [r (* 1.001 dx)]
+              (gap (triangles x) (triangles y) (mapv #(- (double %) r) p) (mapv #(+ (double %) r) p))))]
     {:inside (:name y) :depth dy :gap g
      :near? (and (at-most? g allowed) (at-most? dx (+ dy g allowed)))}))
 
@@ -526,10 +526,13 @@
                             [name (* 0.5 (double (first (segment-sides geom))))]))
          beyond (remove #(at-most? (:distance %) (allowed (:name %))) [a b])
          ;; never far from a segment it lies inside; judged from that one's surface
-         holders (when (and point (seq beyond)) (filterv #(contains-point? point %) [a b]))
+         ;; each segment's triangles worked out once, and only if asked
+         triangles (memoize #(world-triangles (:geom %) [0.0 0.0 0.0] 1.0))
+         holders (when (and point (seq beyond)) (filterv #(contains-point? point (triangles %)) [a b]))
          left (remove (set holders) beyond)
          from (when (and (seq holders) (seq left))
-                (reach-from-inside point (first left) (first holders) (allowed (:name (first left)))))
+                (reach-from-inside point (first left) (first holders) (allowed (:name (first left)))
+                                   triangles))
          outside (if (:near? from) [] left)
          base {:joint joint-name :tolerance tolerance
                :distances (into {} (map (juxt :name :distance)) measured)}]

@@ -100,7 +100,7 @@
              :let [name (segment/segment-name g)]]
          {:kind :modifiers :segment name :modifiers (vec ms) :warning? true
           :message (str "segment " (pr-str name) " is built without its modifiers or shape keys ("
-                        (str/join ", " (map #(str (:name %) ": " (:kind %) (some->> (:why %) (str ", "))) ms))
+                        (sense/modifiers-text ms)
                         "), which is not the shape Blender shows;"
                         " apply them in Blender (Object > Convert > Mesh) to build that")})))
 

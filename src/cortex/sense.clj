@@ -5,7 +5,8 @@
 
   Entry points: `meta-data` (an object's custom property),
   `sense-nodes` (the markers under a named parent), `camera-key`,
-  `rigid-body-key`, `constraint-key`, `world-key`, `modifiers-key`."
+  `rigid-body-key`, `constraint-key`, `world-key`, `modifiers-key`,
+  `modifiers-text`."
   (:import (com.jme3.scene Geometry Node Spatial)))
 
 (set! *warn-on-reflection* true)
@@ -48,6 +49,12 @@
   with :why for a Mirror or a shape key (see cortex.blender.scene's
   unapplied)."
   "blender-modifiers")
+
+(defn modifiers-text
+  "Modifiers as listed under `modifiers-key`, as warnings name them:
+  \"Mirror: Mirror, it bisects, Subdivision: Subsurf\"."
+  [ms]
+  (apply str (interpose ", " (map #(str (:name %) ": " (:kind %) (some->> (:why %) (str ", "))) ms))))
 
 (defn sense-nodes
   "A function of a creature that returns the children of the creature's

@@ -12,7 +12,8 @@
             [cortex.blender.file :as f]
             [cortex.blender.math :as m]
             [cortex.blender.mesh :as mesh]
-            [cortex.blender.rigid-body :as physics]))
+            [cortex.blender.rigid-body :as physics]
+            [cortex.sense :as sense]))
 
 (set! *warn-on-reflection* true)
 
@@ -404,12 +405,9 @@
   (kind \"ShapeKey\"), empty for an object that is no mesh."
   [{:keys [type modifiers shape-keys]}]
   (if (= type "MESH")
-    (into (vec (for [{:keys [mirror] :as m} modifiers
+    (into (vec (for [m modifiers
                      :when (and (:viewport? m) (:reshapes? m) (not (:applied? m)))]
-                 (cond-> (select-keys m [:name :kind])
-                   (:bisect? mirror) (assoc :why "it bisects")
-                   (and mirror (not (:bisect? mirror))) (assoc :why "its mirror object's frame is not known here")
-                   (:why m) (assoc :why (:why m)))))
+                 (select-keys m [:name :kind :why])))
           (for [{:keys [name value]} shape-keys]
             {:name name :kind "ShapeKey" :why (format "at %.2f" (double value))}))
     []))
@@ -440,17 +438,22 @@
   would make more than `*mirror-budget*` vertices, is left unapplied."
   [o mesh worlds]
   (let [world (worlds (:key o))
+        inverse (some-> world m/affine-inverse)
         step (fn [[mesh done] {:keys [viewport? mirror] :as md}]
                (let [{:keys [axes merge? tolerance bisect? object-key]} mirror
                      ;; into the frame mirrored across, and back
-                     to (when (and world object-key (worlds object-key) (m/affine-inverse world))
-                          (m/mat-mul (m/affine-inverse world) (worlds object-key)))
+                     to (when (and inverse object-key (worlds object-key))
+                          (m/mat-mul inverse (worlds object-key)))
                      back (when to (m/affine-inverse to))
                      n (when mesh (quot (alength ^floats (:positions mesh)) 3))
                      too-many? (and n (> (* n (long (Math/pow 2 (count (filter true? axes)))))
-                                         (long *mirror-budget*)))]
-                 (if (and mesh viewport? mirror (not bisect?) world (or (nil? object-key) back)
-                          (not too-many?))
+                                         (long *mirror-budget*)))
+                     ;; why a Mirror Blender shows is left as it is
+                     why (cond (not (and mesh viewport? mirror)) nil
+                               bisect? "it bisects"
+                               too-many? (str "it would make more than " *mirror-budget* " vertices")
+                               (and object-key (not back)) "its mirror object's frame is not known here")]
+                 (if (and mesh viewport? mirror world (nil? why))
                    [(reduce (fn [mesh k]
                               (let [flip (fn [p] (update (vec p) k -))
                                     reflect (if to
@@ -459,9 +462,7 @@
                                 (mesh/mirrored mesh reflect merge? tolerance)))
                             mesh (filter #(nth axes %) [0 1 2]))
                     (conj done (assoc md :applied? true))]
-                   [mesh (conj done (cond-> md
-                                      (and mirror viewport? too-many? (not bisect?))
-                                      (assoc :why (str "it would make more than " *mirror-budget* " vertices"))))])))
+                   [mesh (conj done (cond-> md why (assoc :why why)))])))
         [mesh mods] (reduce step [mesh []] (:modifiers o))]
     (assoc o :mesh mesh :modifiers mods)))
 
@@ -479,7 +480,7 @@
   [{:keys [name] :as o}]
   (when-let [ms (seq (unapplied o))]
     (str "object " (pr-str name) " has modifiers or shape keys the reader does not apply ("
-         (str/join ", " (map #(str (:name %) ": " (:kind %) (some->> (:why %) (str ", "))) ms))
+         (sense/modifiers-text ms)
          "): it loads as Blender draws it with them off;"
          " apply them in Blender (Object > Convert > Mesh) to load what Blender shows")))
 
