@@ -60,7 +60,8 @@ OUT.json, by fixture name:
   "mjx_seconds" in MJX, MuJoCo's JAX port, on the CPU: {"heights", "jax",
   "chain" (the longest chain of rotations), "fusion" (false where that
   chain is too long for XLA's fusion pass, which is then left out)},
-  {"error": what mjx.put_model or the compiler said}, or {"skipped": why}.
+  {"error": what mjx.put_model or the compiler said, or where MJX
+  diverged, with "heights" until then}, or {"skipped": why}.
 - "urdf": check_urdf's exit code and output; PyBullet's link masses; and the
   same drop in PyBullet (1/60 s step in four substeps, floor friction 1:
   Bullet multiplies).
@@ -314,10 +315,14 @@ def mjx_held(path, seconds):
             else lowered.compile(compiler_options={"xla_disable_hlo_passes": "fusion"}))
     sub, _, n = frames(m, seconds)
     heights = []
-    for _ in range(n):
+    for i in range(n):
         for _ in range(sub):
             dx = step(mx, dx)
-        heights.append(com_height(m, np.asarray(dx.xipos)))
+        h = com_height(m, np.asarray(dx.xipos))
+        if not math.isfinite(h):  # JSON has no NaN: say where it diverged
+            return {"error": f"MJX diverged: the centre of mass is {h} after {(i + 1) / 60:.3f} s",
+                    "heights": heights}
+        heights.append(h)
     return {"heights": heights, "jax": jax.__version__, "chain": chain, "fusion": fusion}
 
 

@@ -119,11 +119,25 @@
   joint `j`."
   [info j dofs]
   (let [pin (local-point info (z-up (:pivot j)))]
-    (for [{:keys [name axis range ball slide? stiffness damping]} dofs]
+    (for [{:keys [name axis range ball slide? stiffness damping] :as d} dofs]
       (if ball
         [:joint {:name name :type "ball" :pos pin}]
+        ;; an axis locked away from 0 has no range: an equality holds it
         [:joint {:name name :type (if slide? "slide" "hinge") :pos pin :axis (local-vector info axis)
-                 :range range :stiffness stiffness :damping damping}]))))
+                 :range (when-not (model/held-at d) range) :stiffness stiffness :damping damping}]))))
+
+(defn- held
+  "[[dof value] ...]: each one-axis dof of `all-dofs` locked at one
+  value, which MuJoCo takes as a range only if its ends differ."
+  [all-dofs]
+  (for [[_ ds] (sort-by key all-dofs) d ds :let [v (model/held-at d)] :when v]
+    [(:name d) v]))
+
+(defn- held-equality
+  "The MJCF equality that holds dof `n` at `v`, and a comment."
+  [[n v]]
+  (list (str "joint " n " is locked at " v ": held there by an equality")
+        [:joint {:name (str n "/held") :joint1 n :polycoef [v 0.0 0.0 0.0 0.0]}]))
 
 
 (defn- body-element
@@ -182,6 +196,8 @@
       [:worldbody (map #(body % nil) roots)]
       (when (seq (:joints plan))
         [:contact (for [{[a b] :segments} (:joints plan)] [:exclude {:body1 a :body2 b}])])
+      (when-let [hs (seq (held all-dofs))]
+        [:equality (map held-equality hs)])
       [:actuator
        (for [{:keys [name rotation]} (:joints plan)
              :let [{:keys [strength kp kd]} (ms name)]
@@ -334,10 +350,14 @@
                                                                          :conaffinity collision-groups)))
                                             (pieces shape))
                                (map #(body % id) (children id)))))
+        held (held all-dofs)
         world (:world plan)
         step (double (or (:step world) (/ 1.0 240)))
-        excluded (for [{:keys [segments settings] :as c} (concat (vals joint) loops)
-                       :when (:disable-collisions settings)]
+        ;; a constraint left out for freeing every axis still keeps its
+        ;; bodies apart in Bullet, if it says so
+        excluded (for [{:keys [segments settings enabled?]} (concat (vals joint) loops (map first skipped))
+                       :when (and enabled? (:disable-collisions settings)
+                                  (not-every? (comp :static? infos) segments))]
                    segments)]
     (xml
      [:mujoco {:model (:creature plan)}
@@ -350,7 +370,7 @@
       ;; limits and loops as hard as MuJoCo holds steadily (see the text);
       ;; a tree has no equality, and its document says nothing of one
       [:default [:joint {:solreflimit [(* 2 step) 1.0] :solimplimit [0.99 0.999 0.001]}]
-       (when (seq loops)
+       (when (or (seq loops) (seq held))
          [:equality {:solref [(* 2 step) 1.0] :solimp [0.99 0.999 0.001]}])]
       [:option {:timestep step
                 :gravity (z-up (or (:gravity world) [0.0 -9.81 0.0]))
@@ -362,5 +382,5 @@
       [:worldbody (map #(body % nil) roots)]
       (when (seq excluded)
         [:contact (for [[a b] excluded] [:exclude {:body1 a :body2 b}])])
-      (when (seq loops)
-        [:equality (map #(loop-equality infos %) loops)])])))
+      (when (or (seq loops) (seq held))
+        [:equality (map #(loop-equality infos %) loops) (map held-equality held)])])))

@@ -243,7 +243,8 @@
    "rig-chain" "test/fixtures/physics-sim/rig-chain.blend"
    "kick" "test/fixtures/physics-sim/kick.blend"
    "four-bar" "test/fixtures/loops/four-bar.blend"
-   "welded-ring" "test/fixtures/loops/welded-ring.blend"})
+   "welded-ring" "test/fixtures/loops/welded-ring.blend"
+   "addon-ragdoll" "test/fixtures/physics-sim/addon-ragdoll.blend"})
 
 (defn- tab-plan [f] (plan/plan (physics-tab/load-creature (tab-fixtures f))))
 
@@ -341,8 +342,45 @@
                 (filter :stiffness)
                 (map #(select-keys % [:name :stiffness :damping]))))
         "a spring is its joint's stiffness and damping")
-    (is (re-find #"rigid body constraint \"c\": locks its angular X at 0.2.*lock it at 0, or give it a range"
-                 (str (refusal #(model/tab-dofs (made-up "GENERIC" {["ang" "x"] [0.2 0.2]}) false)))))))
+    (let [neck (made-up "GENERIC" (merge locked {["ang" "x"] [0.2 0.2] ["ang" "y"] [0 0] ["ang" "z"] [0 0]}))]
+      (is (= [["c/x" [-0.2 -0.2] [1.0 0.0 0.0] false]] (seen neck false))
+          "an axis locked away from 0 is a joint whose range is that one angle")
+      (is (= [["c/x" [0.2 0.2] [1.0 0.0 0.0] false]] (seen neck true)))
+      (is (= 0.2 (model/held-at (first (model/tab-dofs neck true)))))
+      (is (nil? (model/held-at (first (model/tab-dofs generic true))))))))
+
+(deftest what-cannot-be-written-is-named
+  (is (re-find #"^segment \"ngon-hexagon\" of creature .*transforms.blend is flat: its 6 points enclose no volume.*Solidify"
+               (str (refusal #(ex/mjcf (body/body! (util/load-blender-model "test/fixtures/blend/b34/transforms.blend")))))))
+  (let [empty-plan (plan/plan (body/body! (util/load-blender-model "test/fixtures/poses/scenes.blend")))]
+    (is (= [] (:segments empty-plan)))
+    (is (str/includes? (ex/mjcf empty-plan) "<worldbody/>") "MJCF takes a world with nothing in it")
+    (is (re-find #"creature .*scenes.blend has no segment: a URDF robot needs a link"
+                 (str (refusal #(ex/urdf empty-plan)))))))
+
+(deftest an-add-on-s-ragdoll-exports
+  (let [p (tab-plan "addon-ragdoll")
+        doc (ex/mjcf p)
+        {:keys [skipped]} (model/tab-joints p)]
+    (is (= [["torso [Head]" "a GENERIC that limits no axis frees every axis"]]
+           (map (fn [[c why]] [(:name c) why]) skipped)))
+    (is (str/includes? doc "<freejoint name=\"torso [Active]/free\"/>"))
+    (is (nil? (get (joint-attrs doc) "torso [Head]/x")))
+    (is (= {"name" "head [Head]/x" "type" "hinge"}
+           (select-keys (get (joint-attrs doc) "head [Head]/x") ["name" "type" "range"]))
+        "the locked neck has no range")
+    (is (re-find #"<joint name=\"head \[Head\]/x/held\" joint1=\"head \[Head\]/x\" polycoef=\"0.17499\d* 0.0 0.0 0.0 0.0\"/>" doc))
+    (is (re-find #"<limit lower=\"0.17499\d*\" upper=\"0.17499\d*\"" (ex/urdf p))
+        "URDF says it as a range of one angle")
+    (is (re-find #"<exclude body1=\"Armature \[Root\]\" body2=\"torso \[Active\]\"/>" doc)
+        "the left-out constraint still keeps its bodies apart"))
+  (testing "a hinge of cortex's own limited to one angle is held there too"
+    (let [p (plan/plan (util/load-blender-model "test/fixtures/designer/quadruped.blend"))
+          doc (ex/mjcf (update p :joints (partial mapv #(cond-> %
+                                                          (= "knee-front-r" (:name %))
+                                                          (assoc-in [:description :limit] [0.3 0.3])))))]
+      (is (nil? (get-in (joint-attrs doc) ["knee-front-r" "range"])))
+      (is (str/includes? doc "<joint name=\"knee-front-r/held\" joint1=\"knee-front-r\" polycoef=\"0.3 0.0 0.0 0.0 0.0\"/>")))))
 
 (deftest loops-and-refusals
   (let [p (tab-plan "kick")
@@ -441,6 +479,11 @@
              [(.getName ^com.jme3.scene.Spatial n)
               (mapv #(/ 1.0 (double %)) (engine/inverse-inertia (engine/rigid-body c)))])))
 
+(def ^:private mjx-diverges
+  "The Physics-tab fixtures MJX is not run on, with why (see the text on MJX below)."
+  {"addon-ragdoll" (str "at the add-on's step of 1/60 s MJX diverges after the landing"
+                        " (0.9 s), where MuJoCo lies still; at 1/240 s the two agree")})
+
 (defn- tab-entry
   "What check_export.py needs of the run of fixture `f`, written into `dir`."
   [f {:keys [plan]} dir]
@@ -452,7 +495,8 @@
         ;; the URDF's root: the root that is not scenery
         root (by-id (first (filter #(or (pos? (:mass (by-id %))) (seq (children %))) roots)))]
     (ex/write! plan mj u)
-    (cond-> {:name f :mjcf mj :urdf u :seconds 5.0 :joints [] :held true :mjx_seconds 1.0
+    (cond-> {:name f :mjcf mj :urdf u :seconds 5.0 :joints [] :held true
+             :mjx_seconds (when-not (mjx-diverges f) 1.0)
              :pairs (for [{:keys [segments settings]} (vals joint)
                           :when (:disable-collisions settings)]
                       segments)
@@ -538,7 +582,9 @@
                 (str label ": MuJoCo's centre of mass " (nth (mj-drop "heights") i) " m up, cortex's "
                      (nth heights i) ", size " size)))
           (is (= {} (mj-drop "warnings")) "MuJoCo warned during the drop")
-          (check-mjx f size mjx mj-held (contains? mjx-without-jdotv f))
+          (if-let [why (mjx-diverges f)]
+            (println (str "Physics tab, " f ": not run in MJX: " why))
+            (check-mjx f size mjx mj-held (contains? mjx-without-jdotv f)))
           (doseq [[n past] tab_limits
                   :when (not= n "ring")]
             (is (every? #(< % 0.05) past) (str n " past its limits by " past)))
@@ -557,7 +603,7 @@
           (when urdf
             (doseq [{:keys [id mass]} (:segments plan) :when (pos? mass)]
               (is (close? (get-in urdf ["masses" id]) mass 1e-6) id)))
-          (when (= f "ragdoll")
+          (when (#{"ragdoll" "addon-ragdoll"} f)
             ;; PyBullet's chain sags away from the others (see the text)
             (let [h (get-in urdf ["drop" "heights"])]
               (doseq [[label i] [["after 1 s" 59] ["at the end" (dec (count heights))]]]

@@ -163,16 +163,25 @@
   frame) :faces} of every mesh piece of `plan`."
   [plan]
   (into {}
-        (for [{:keys [id shape]} (:segments plan)
+        (for [{:keys [id shape kind]} (:segments plan)
               :let [ps (vec (pieces shape))]
               [k {:keys [type points pos rot]}] (map-indexed vector ps)
               :when (= type :mesh)]
-          (let [pts (mapv #(z-up (v+ pos (mv rot %))) points)]
+          (let [pts (mapv #(z-up (v+ pos (mv rot %))) points)
+                faces (try (hull-faces pts)
+                           (catch clojure.lang.ExceptionInfo e
+                             (throw (ex-info (str (if (= :rigid-body kind) "rigid body " "segment ")
+                                                  (pr-str id) " of creature " (:creature plan)
+                                                  " is flat: its " (ex-message e) ", and a mesh in"
+                                                  " MJCF or URDF must enclose one; give it a"
+                                                  " thickness (apply a Solidify modifier), or"
+                                                  " leave it out of the creature")
+                                             {:segment id :creature (:creature plan)} e))))]
             [[id k] {:file (str (safe-name (-> (str (:creature plan)) (str/replace #".*/" "")
                                                (str/replace #"\.blend$" "")))
                                 "-" (safe-name id)
                                 (when (next ps) (str "-" k)) ".obj")
-                     :points pts :faces (hull-faces pts)}]))))
+                     :points pts :faces faces}]))))
 
 (defn meshes
   "The OBJ files `mjcf` and `urdf` name for `plan`: file name -> text.

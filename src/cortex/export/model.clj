@@ -212,6 +212,26 @@
     (cond-> info
       (not (:static? info)) (assoc :moments (rigid-body-moments s)))))
 
+(defn axis-limits
+  "Constraint `c`'s limits of `kind` (\"lin\" or \"ang\") on its X, Y
+  and Z: :locked (at 0), [lo hi] (lo = hi for an axis locked away from
+  0, which Bullet pushes there), or nil (free: no limit, or the lower
+  above the upper, which Bullet frees)."
+  [{:keys [settings name]} kind]
+  (mapv (fn [l]
+          (when l
+            (let [[lo hi] (mapv double l)]
+              (cond (> lo hi) nil
+                    (and (== lo hi) (zero? lo)) :locked
+                    :else [lo hi]))))
+        (constraint/limits name settings kind)))
+
+(defn held-at
+  "The value a one-axis dof of `tab-dofs` is locked at away from 0
+  (its range's ends equal), or nil."
+  [{[lo hi] :range}]
+  (when (and lo (== (double lo) (double hi))) (double lo)))
+
 (defn tab-joints
   "How the constraints of Physics-tab `plan` join its bodies, in the
   plan's order: {:joints [constraint ...] (a tree), :loops [constraint
@@ -236,7 +256,11 @@
                                        " bodies with another constraint and drive them some other"
                                        " way, or turn its motor off")
                                   {:type type})
-                          "a MOTOR with its motors off frees every axis"))
+                          "a MOTOR with its motors off frees every axis")
+                        (and (#{"GENERIC" "GENERIC_SPRING"} type)
+                             (every? nil? (concat (axis-limits c "lin") (axis-limits c "ang")))
+                             (not-any? (fn [[k v]] (and v (str/starts-with? (clojure.core/name k) "use-spring"))) settings))
+                        (str "a " type " that limits no axis frees every axis"))
               ra (root-of m a)
               rb (root-of m b)]
           (cond why (recur (rest cs) m (update out :skipped conj [c why]))
@@ -250,26 +274,6 @@
   constraints `tab-joints` puts in it; `root` as for `tree`."
   [plan & [root]]
   (tree (assoc plan :joints (:joints (tab-joints plan))) root))
-
-(defn axis-limits
-  "Constraint `c`'s limits of `kind` (\"lin\" or \"ang\") on its X, Y
-  and Z: :locked, [lo hi], or nil (free: no limit, or the lower above
-  the upper, which Bullet frees). An ex-info for an axis locked away
-  from zero."
-  [{:keys [name settings]} kind]
-  (mapv (fn [k l]
-          (when l
-            (let [[lo hi] (mapv double l)]
-              (cond (> lo hi) nil
-                    (< lo hi) [lo hi]
-                    (zero? lo) :locked
-                    :else (refuse "rigid body constraint" name
-                                  (str "locks its " (if (= kind "lin") "linear" "angular") " "
-                                       (["X" "Y" "Z"] k) " at " lo
-                                       ", which a joint cannot say without moving a body from"
-                                       " where the file placed it: lock it at 0, or give it a range")
-                                  {:axis k :kind kind})))))
-        (range 3) (constraint/limits name settings kind)))
 
 (defn tab-dofs
   "The one-axis degrees of freedom (see `dofs`) of Physics-tab

@@ -89,6 +89,12 @@
          ;; from (its ground) are the world's, not the robot's
          scenery (when tab? (filter #(and (:static? (infos %)) (empty? (children %))) roots))
          roots (remove (set scenery) roots)
+         _ (when (empty? roots)
+             (throw (ex-info (str "creature " (:creature plan) " has no "
+                                  (if tab? "body but passive ones joined to nothing" "segment")
+                                  ": a URDF robot needs a link; give it a "
+                                  (if tab? "rigid body that moves" "segment") ", or export MJCF")
+                             {:creature (:creature plan)})))
          _ (when (next roots)
              (throw (ex-info (str "creature " (:creature plan) " is in " (count roots)
                                   " pieces (roots " (str/join ", " roots)
