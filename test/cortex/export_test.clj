@@ -374,6 +374,14 @@
         "URDF says it as a range of one angle")
     (is (re-find #"<exclude body1=\"Armature \[Root\]\" body2=\"torso \[Active\]\"/>" doc)
         "the left-out constraint still keeps its bodies apart"))
+  (testing "a constraint that limits nothing joins nothing, but a spring does"
+    (let [free (fn [c] (:skipped (model/tab-joints {:segments [{:id "a" :mass 1.0} {:id "b" :mass 1.0}]
+                                                     :constraints [(assoc c :enabled? true)]})))]
+      (is (= ["a GENERIC that limits no axis frees every axis"]
+             (map second (free (made-up "GENERIC" {} {:use-spring-x true})))))
+      (is (= [] (free (made-up "GENERIC_SPRING" {} {:use-spring-ang-y true}))))
+      (is (= ["a GENERIC_SPRING that limits no axis frees every axis"]
+             (map second (free (made-up "GENERIC_SPRING" {})))))))
   (testing "a hinge of cortex's own limited to one angle is held there too"
     (let [p (plan/plan (util/load-blender-model "test/fixtures/designer/quadruped.blend"))
           doc (ex/mjcf (update p :joints (partial mapv #(cond-> %

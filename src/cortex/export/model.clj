@@ -226,6 +226,13 @@
                     :else [lo hi]))))
         (constraint/limits name settings kind)))
 
+(defn- sprung?
+  "Whether constraint `c` is a GENERIC_SPRING with a spring on any axis
+  (Bullet gives a GENERIC none, whatever its settings say)."
+  [{:keys [type settings]}]
+  (boolean (and (= "GENERIC_SPRING" type)
+                (some #(get settings (keyword (str "use-spring-" %))) ["x" "y" "z" "ang-x" "ang-y" "ang-z"]))))
+
 (defn held-at
   "The value a one-axis dof of `tab-dofs` is locked at away from 0
   (its range's ends equal), or nil."
@@ -259,7 +266,7 @@
                           "a MOTOR with its motors off frees every axis")
                         (and (#{"GENERIC" "GENERIC_SPRING"} type)
                              (every? nil? (concat (axis-limits c "lin") (axis-limits c "ang")))
-                             (not-any? (fn [[k v]] (and v (str/starts-with? (clojure.core/name k) "use-spring"))) settings))
+                             (not (sprung? c)))
                         (str "a " type " that limits no axis frees every axis"))
               ra (root-of m a)
               rb (root-of m b)]
