@@ -14,8 +14,8 @@
   (:require [clojure.java.io :as io]
             [clojure.string :as str]
             [cortex.export.geometry :as geometry
-             :refer [C axis-turn identity3 matrix->quat mesh-files mm mv pieces quat->matrix
-                     transpose v* v+ v- z-up z-up-rotation]]
+             :refer [C axis-turn flat-notes identity3 matrix->quat mesh-files mm mv pieces
+                     quat->matrix transpose v* v+ v- z-up z-up-rotation]]
             [cortex.export.model :as model :refer [blender->jme plan-dofs segment-info
                                                    shape-points]]
             [cortex.export.urdf :as urdf]
@@ -176,6 +176,7 @@
         body (fn body [id parent]
                (let [{:keys [shape] :as info} (infos id)]
                  (body-element infos joint all-dofs id parent
+                               (flat-notes meshes id)
                                (map-indexed #(piece-geom info meshes %1 %2) (pieces shape))
                                (let [[c half] (bounds (map z-up (shape-points shape)))]
                                  [:site {:name (str id "/touch") :type "box" :pos c
@@ -344,6 +345,7 @@
         body (fn body [id parent]
                (let [{:keys [shape collision-groups] :as info} (infos id)]
                  (body-element infos joint all-dofs id parent
+                               (flat-notes meshes id)
                                (map-indexed (fn [k piece]
                                               (cond-> (piece-geom info meshes k piece)
                                                 collision-groups (update 1 assoc :contype collision-groups

@@ -6,7 +6,7 @@
 
   Entry points: `segments`, `segment-name`, `mass`, `mesh-points`,
   `simplify-hull`, `hull-from-points`, `mesh-triangles`,
-  `plan-segment`, `build-segment!`, `segment-pose`, `mass-offset`,
+  `plan-segment`, `build-segment!`, `bullet-moments`, `segment-pose`, `mass-offset`,
   `default-options`, `record` (what the creature's Node keeps)."
   (:require [cortex.engine :as engine]
             [cortex.mass :as mass]
@@ -206,7 +206,8 @@
 (defn inertia-plan
   "How `geom` is to be massed: {:source :mesh :centre c :moments m
   :rotation q (or nil when the body is the segment's own frame)}, or
-  {:source :box} when its mesh encloses no volume. `triangles`, when
+  {:source :box} when its mesh encloses no volume (`plan-segment` adds
+  the :moments Bullet gives its shape). `triangles`, when
   given, are its `mesh-triangles`."
   ([geom mass] (inertia-plan geom mass (mesh-triangles geom)))
   ([^Geometry geom mass triangles]
@@ -296,6 +297,24 @@
        :compound (reduce + (map #(shape-volume (:shape %)) children))
        0.0))))
 
+(defn- collision-shape-of
+  "The collision shape of a segment's plan `shape`, as its body gets it."
+  [shape]
+  (if (= :hull (:type shape))
+    (hull-from-points (map util/vec3 (:points shape)) (shapes/margin shape))
+    (shapes/collision-shape shape)))
+
+(defn bullet-moments
+  "The principal moments (the segment's own axes, jME's) that the running
+  engine gives a body of plan `shape` and `mass` by Bullet's own rule:
+  what a segment planned with {:source :box} has. Zeros for a static one."
+  [mass shape]
+  (if (pos? (double mass))
+    (let [c (RigidBodyControl. ^com.jme3.bullet.collision.shapes.CollisionShape
+                               (collision-shape-of shape) (float mass))]
+      (mapv #(/ 1.0 (double %)) (engine/inverse-inertia (engine/rigid-body c))))
+    [0.0 0.0 0.0]))
+
 (defn- make-body
   "The rigid body control of segment `geom` as its plan `p` says (see
   `plan-segment`): its hull, its mass, its mass properties, and where
@@ -305,9 +324,7 @@
   ^RigidBodyControl [^Geometry geom {:keys [mass inertia shape position rotation]}]
   (let [{:keys [source centre moments]} inertia
         hull? (= :hull (:type shape))
-        made (if hull?
-               (hull-from-points (map util/vec3 (:points shape)) (shapes/margin shape))
-               (shapes/collision-shape shape))
+        made (collision-shape-of shape)
         at (util/vec3 position)
         turn (quaternion rotation)]
     (if (and (= :mesh source) (:rotation inertia))
@@ -328,7 +345,7 @@
         (.addControl geom control)
         (.setPhysicsLocation control at)
         (.setPhysicsRotation control turn)
-        (when (= :mesh source) (set-inertia! control mass moments))
+        (when moments (set-inertia! control mass moments))
         control))))
 
 (defn mass-offset
@@ -470,7 +487,8 @@
           inertia (if (= :box mass-properties) {:source :box} (inertia-plan geom m @triangles))
           _ (check-solid! geom inertia)
           points (hull-points geom)
-          hull {:type :hull :points (mapv vector-data points)}]
+          hull {:type :hull :points (mapv vector-data points)}
+          shape (or given (shape-choice geom opts hull triangles))]
       {:name (segment-name geom)
        :mass m
        :friction (property geom "friction" 0.5)
@@ -480,8 +498,10 @@
        :position (vector-data (.getWorldTranslation geom))
        :rotation (quaternion-data (.getWorldRotation geom))
        :scale (vector-data (.getWorldScale geom))
-       :inertia inertia
-       :shape (or given (shape-choice geom opts hull triangles))}))))
+       ;; Bullet's approximation: the moments its engine gives the shape
+       :inertia (cond-> inertia
+                  (= :box (:source inertia)) (assoc :moments (bullet-moments m shape)))
+       :shape shape}))))
 
 (defn build-segment!
   "Give `geom` the rigid body its plan `p` (see `plan-segment`) says.

@@ -87,8 +87,8 @@
         box? (= :box (:source inertia))]
     {:com (v+ position (mv R (if box? [0 0 0] (:centre inertia))))
      :axes (mm R (if box? identity3 (quat->matrix (:rotation inertia))))
-     :moments (if box? (box-moments mass (shape-points shape) (or (:margin shape) 0.0))
-                  (:moments inertia))
+     :moments (or (:moments inertia)
+                  (box-moments mass (shape-points shape) (or (:margin shape) 0.0)))
      :mass (double mass)}))
 
 (defn- pin-inertia

@@ -14,10 +14,12 @@
             [cortex.physics-tab :as physics-tab]
             [cortex.plan :as plan]
             [cortex.rigid-body :as rigid-body]
+            [cortex.segment :as segment]
             [cortex.sim :as sim]
             [cortex.blender]
             [cortex.util :as util])
   (:import (com.jme3.bullet.control RigidBodyControl)
+           (com.jme3.scene Geometry)
            (java.nio.file Files)
            (java.nio.file.attribute FileAttribute)))
 
@@ -350,8 +352,13 @@
       (is (nil? (model/held-at (first (model/tab-dofs generic true))))))))
 
 (deftest what-cannot-be-written-is-named
-  (is (re-find #"^segment \"ngon-hexagon\" of creature .*transforms.blend is flat: its 6 points enclose no volume.*Solidify"
-               (str (refusal #(ex/mjcf (body/body! (util/load-blender-model "test/fixtures/blend/b34/transforms.blend")))))))
+  (let [line {:creature "line.blend" :joints []
+              :segments [{:id "rod" :mass 1.0 :friction 0.5 :position [0.0 0.0 0.0]
+                          :rotation [0 0 0 1] :inertia {:source :box}
+                          :shape {:type :hull :points [[0 0 0] [1 0 0] [2 0 0] [3 0 0]]}}]}]
+    (is (re-find #"^segment \"rod\" of creature line.blend has no area: its 4 points lie on a line"
+                 (str (refusal #(ex/mjcf line)))))
+    (is (= (refusal #(ex/mjcf line)) (refusal #(ex/urdf line)))))
   (let [empty-plan (plan/plan (body/body! (util/load-blender-model "test/fixtures/poses/scenes.blend")))]
     (is (= [] (:segments empty-plan)))
     (is (str/includes? (ex/mjcf empty-plan) "<worldbody/>") "MJCF takes a world with nothing in it")
@@ -1036,6 +1043,67 @@
               (is (not (re-find #"<geom [^>]*type=\"cylinder\"" (ex/mjcf p))))
               (check-mjx f (size p) mjx held))))))
     (skip "cortex.export-test/strangers-creatures-export-at-any-scale")))
+
+(def ^:private hexagon
+  "transforms.blend's lone hexagon, a flat segment: [creature plan], the
+  plan of the hexagon alone, so that it is one tree for URDF."
+  (delay (let [c (util/load-blender-model "test/fixtures/blend/b34/transforms.blend")
+               p (update (plan/plan c) :segments (partial filterv #(= "ngon-hexagon" (:id %))))]
+           [c p])))
+
+(def ^:private hexagon-moments
+  "The principal moments (jME's axes) of the hexagon's body, as cortex
+  built it."
+  (delay (let [[c] @hexagon
+               _ (body/body! c)
+               g (first (filter #(= "ngon-hexagon" (segment/segment-name %)) (segment/segments c)))]
+           (mapv #(/ 1.0 (double %)) (engine/inverse-inertia
+                                      (engine/rigid-body (.getControl ^Geometry g RigidBodyControl)))))))
+
+(deftest a-flat-segment-is-written-as-a-plate
+  (let [[_ p] @hexagon]
+    (is (close? (get-in p [:segments 0 :inertia :moments]) @hexagon-moments 1e-6)
+        "the plan keeps the moments the body is built with"))
+  (let [[_ p] @hexagon
+        polygon (map geo/z-up (get-in p [:segments 0 :shape :points]))
+        [[_ {:keys [points thickness file]}] :as ms] (seq (geo/mesh-files p))]
+    (is (= 1 (count ms)))
+    (is (= geo/flat-thickness thickness 0.002))
+    (testing "the prism is the polygon, moved half the thickness to each side"
+      (is (= 12 (count points)))
+      (is (= (set (for [q polygon dz [0.001 -0.001]] (mapv #(Math/round (* 1e6 (double %))) (update (vec q) 2 + dz))))
+             (set (map (fn [q] (mapv #(Math/round (* 1e6 (double %))) q)) points))))
+      (is (< (Math/abs (- (engine/hull-volume points) (* 1.5 (Math/sqrt 3.0) 0.002))) 1e-9)
+          "the hexagon's area times 0.002"))
+    (is (str/starts-with? ((ex/meshes p) file) "# flat segment ngon-hexagon's polygon as a prism 0.002 thick"))
+    (doseq [doc [(ex/mjcf p) (ex/urdf p)]]
+      (is (str/includes? doc "<!-- segment ngon-hexagon is flat: its polygon is written as a prism 0.002 thick"))))
+  (testing "a small polygon's prism is a hundredth of its extent thick"
+    (let [tiny {:creature "tiny.blend" :joints []
+                :segments [{:id "leaf" :mass 1.0 :friction 0.5 :position [0.0 0.0 0.0]
+                            :rotation [0 0 0 1] :inertia {:source :box}
+                            :shape {:type :hull :points [[0 0 0] [0.01 0 0] [0 0 0.008] [0.01 0 0.008]]}}]}
+          [[_ {:keys [points thickness]}]] (seq (geo/mesh-files tiny))]
+      (is (= 1.0E-4 thickness))
+      (is (< (Math/abs (- (engine/hull-volume points) (* 0.01 0.008 1e-4))) 1e-15))))
+  (if-let [py (python)]
+    (let [[_ p] @hexagon
+          dir (str (Files/createTempDirectory "cortex-flat" (make-array FileAttribute 0)))
+          mj (str dir "/hexagon.xml")
+          urdf (str dir "/hexagon.urdf")
+          _ (ex/write! p mj urdf)
+          ;; what cortex's engine gives the plate: jME's axes, Z up's X, Z, Y
+          [ix iy iz] @hexagon-moments
+          {:strs [mujoco bodies urdf]} (get (check-export py dir [{:name "hexagon" :mjcf mj :urdf urdf
+                                                                   :compile_only true}])
+                                            "hexagon")]
+      (is (nil? (get mujoco "error")))
+      (is (empty? (get mujoco "warnings")))
+      (is (close? (get-in bodies ["ngon-hexagon" "mass"]) 1.0 1e-9))
+      (is (close? (get-in bodies ["ngon-hexagon" "inertia"]) [[ix 0 0] [0 iz 0] [0 0 iy]] 1e-6)
+          "MuJoCo's inertia is the plate's cortex built")
+      (check-urdf p urdf))
+    (skip "cortex.export-test/a-flat-segment-is-written-as-a-plate, in MuJoCo")))
 
 (def ^:private eye-turn
   "How the worm with eyes is turned for the camera check: 30 degrees

@@ -59,7 +59,7 @@
 
 (def ^:private layers
   "The library's namespaces, lowest first."
-  ["cortex.geometry" "cortex.export.geometry" "cortex.strength" "cortex.engine" "cortex.engine-contract" "cortex.mass" "cortex.sense"
+  ["cortex.export.geometry" "cortex.geometry" "cortex.strength" "cortex.engine" "cortex.engine-contract" "cortex.mass" "cortex.sense"
    "cortex.projection" "cortex.util" "cortex.world"
    "cortex.blender.bytes" "cortex.blender.file" "cortex.blender.math" "cortex.blender.mesh"
    "cortex.blender.rigid-body" "cortex.blender.scene" "cortex.blender.jme" "cortex.blender"

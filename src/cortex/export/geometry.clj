@@ -70,14 +70,14 @@
 (defn hull-faces
   "The triangles [i j k] (indices into `points`, [[x y z] ...],
   counter-clockwise seen from outside) of the convex hull of `points`.
-  An ex-info when they enclose no volume."
+  An ex-info when they enclose no volume, its data's :normal the
+  plane's (a unit vector) when they span one."
   [points]
   (let [ps (mapv #(mapv double %) points)
         n (count ps)
         size (max 1e-12 (reduce max (for [p ps q [(first ps)]] (norm (v- p q)))))
         eps (* 1e-6 size)
-        flat (fn [] (throw (ex-info (str (count ps) " points enclose no volume") {:points n})))
-        _ (when (< n 4) (flat))
+        _ (when (< n 3) (throw (ex-info (str n " points enclose no volume") {:points n})))
         far (fn [score] (apply max-key score (range n)))
         i0 0
         i1 (far #(norm (v- (ps %) (ps i0))))
@@ -85,10 +85,11 @@
         i2 (far #(norm (cross line (v- (ps %) (ps i0)))))
         normal (cross line (v- (ps i2) (ps i0)))
         i3 (far #(Math/abs (dot normal (v- (ps %) (ps i0)))))
-        _ (when (or (< (norm line) eps)
-                    (< (/ (norm normal) (norm line)) eps)
-                    (< (/ (Math/abs (dot normal (v- (ps i3) (ps i0)))) (norm normal)) eps))
-            (flat))
+        _ (when (or (< (norm line) eps) (< (/ (norm normal) (norm line)) eps))
+            (throw (ex-info (str (count ps) " points lie on a line") {:points n})))
+        _ (when (< (/ (Math/abs (dot normal (v- (ps i3) (ps i0)))) (norm normal)) eps)
+            (throw (ex-info (str (count ps) " points lie on a plane")
+                            {:points n :normal (v* (/ 1.0 (norm normal)) normal)})))
         inside (v* 0.25 (reduce v+ (map ps [i0 i1 i2 i3])))
         outward (fn [[a b c]]
                   (let [nrm (cross (v- (ps b) (ps a)) (v- (ps c) (ps a)))]
@@ -113,15 +114,29 @@
 
 (defn obj-text
   "An OBJ file of the triangles `faces` over `points`: only the points
-  the faces use, numbered from 1."
-  [points faces]
-  (let [used (vec (distinct (apply concat faces)))
-        number (zipmap used (range 1 (inc (count used))))]
-    (str "# a segment's convex hull, written by cortex.export (metres, Z up)\n"
-         (str/join (for [i used :let [[x y z] (points i)]]
-                     (str "v " (double x) " " (double y) " " (double z) "\n")))
-         (str/join (for [[a b c] faces]
-                     (str "f " (number a) " " (number b) " " (number c) "\n"))))))
+  the faces use, numbered from 1; `what` the piece is, for its first
+  line."
+  ([points faces] (obj-text points faces "a segment's convex hull"))
+  ([points faces what]
+   (let [used (vec (distinct (apply concat faces)))
+         number (zipmap used (range 1 (inc (count used))))]
+     (str "# " what ", written by cortex.export (metres, Z up)\n"
+          (str/join (for [i used :let [[x y z] (points i)]]
+                      (str "v " (double x) " " (double y) " " (double z) "\n")))
+          (str/join (for [[a b c] faces]
+                      (str "f " (number a) " " (number b) " " (number c) "\n")))))))
+
+(def flat-thickness
+  "How thick a flat piece is written: native Bullet's plate, its hull
+  margin (0.001) on each side of the polygon."
+  0.002)
+
+(defn prism
+  "The points of a flat piece, `points` on a plane of unit `normal`,
+  each moved half of `thickness` to either side of it."
+  [points normal thickness]
+  (let [h (v* (/ (double thickness) 2) normal)]
+    (vec (concat (map #(v+ % h) points) (map #(v- % h) points)))))
 
 (defn axis-turn
   "The rotation that takes Z to the axis `k` (0, 1, 2 for X, Y, Z): how
@@ -160,7 +175,9 @@
 
 (defn mesh-files
   "[segment-id piece-index] -> {:file name :points (Z-up, the segment's
-  frame) :faces} of every mesh piece of `plan`."
+  frame) :faces} of every mesh piece of `plan`, and :thickness for a
+  flat piece written as a prism (see `prism`). An ex-info naming the
+  segment for a piece with no area."
   [plan]
   (into {}
         (for [{:keys [id shape kind]} (:segments plan)
@@ -168,24 +185,45 @@
               [k {:keys [type points pos rot]}] (map-indexed vector ps)
               :when (= type :mesh)]
           (let [pts (mapv #(z-up (v+ pos (mv rot %))) points)
-                faces (try (hull-faces pts)
-                           (catch clojure.lang.ExceptionInfo e
-                             (throw (ex-info (str (if (= :rigid-body kind) "rigid body " "segment ")
-                                                  (pr-str id) " of creature " (:creature plan)
-                                                  " is flat: its " (ex-message e) ", and a mesh in"
-                                                  " MJCF or URDF must enclose one; give it a"
-                                                  " thickness (apply a Solidify modifier), or"
-                                                  " leave it out of the creature")
-                                             {:segment id :creature (:creature plan)} e))))]
-            [[id k] {:file (str (safe-name (-> (str (:creature plan)) (str/replace #".*/" "")
-                                               (str/replace #"\.blend$" "")))
-                                "-" (safe-name id)
-                                (when (next ps) (str "-" k)) ".obj")
-                     :points pts :faces faces}]))))
+                [pts faces t]
+                (try [pts (hull-faces pts) nil]
+                     (catch clojure.lang.ExceptionInfo e
+                       (if-let [normal (:normal (ex-data e))]
+                         ;; flat: written as native Bullet's plate
+                         (let [size (apply max (v- (apply mapv max pts) (apply mapv min pts)))
+                               t (min flat-thickness (/ (double size) 100))
+                               thick (prism pts normal t)]
+                           [thick (hull-faces thick) t])
+                         (throw (ex-info (str (if (= :rigid-body kind) "rigid body " "segment ")
+                                              (pr-str id) " of creature " (:creature plan)
+                                              " has no area: its " (ex-message e) ", and a"
+                                              " mesh in MJCF or URDF must enclose a volume;"
+                                              " give it faces that span a plane or a solid,"
+                                              " or leave it out of the creature")
+                                         {:segment id :creature (:creature plan)} e)))))]
+            [[id k] (cond-> {:file (str (safe-name (-> (str (:creature plan)) (str/replace #".*/" "")
+                                                       (str/replace #"\.blend$" "")))
+                                        "-" (safe-name id)
+                                        (when (next ps) (str "-" k)) ".obj")
+                             :points pts :faces faces}
+                      t (assoc :thickness t))]))))
+
+(defn flat-notes
+  "What a document says of segment `id`'s flat pieces in `meshes` (of
+  `mesh-files`), each written as a prism: comments, one a piece."
+  [meshes id]
+  (for [[[i k] {:keys [thickness]}] (sort-by key meshes)
+        :when (and (= i id) thickness)]
+    (str "segment " id (when (pos? (long k)) (str ", piece " k)) " is flat: its polygon is"
+         " written as a prism " thickness " thick (native Bullet's plate); its mass and"
+         " inertia are cortex's")))
 
 (defn meshes
   "The OBJ files `mjcf` and `urdf` name for `plan`: file name -> text.
   Each is a hull piece of a segment, in the segment's own frame, Z up."
   [plan]
-  (into (sorted-map) (for [[_ {:keys [file points faces]}] (mesh-files plan)]
-                       [file (obj-text points faces)])))
+  (into (sorted-map) (for [[[id] {:keys [file points faces thickness]}] (mesh-files plan)]
+                       [file (if thickness
+                               (obj-text points faces (str "flat segment " id "'s polygon as a prism "
+                                                           thickness " thick"))
+                               (obj-text points faces))])))

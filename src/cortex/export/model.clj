@@ -11,7 +11,8 @@
             [cortex.export.geometry :refer [C dot identity3 mm mv norm quat->matrix
                                             v+ v- v* z-up z-up-rotation]]
             [cortex.rigid-body :as rigid-body]
-            [cortex.strength :as strength :refer [axis-of box-moments]])
+            [cortex.segment :as segment]
+            [cortex.strength :as strength :refer [axis-of]])
   (:import (com.jme3.bullet.collision.shapes CollisionShape)
            (com.jme3.bullet.control RigidBodyControl)
            (com.jme3.math Quaternion Vector3f)))
@@ -23,20 +24,22 @@
   shape-points strength/shape-points)
 
 (defn segment-info
-  "What the writers need of plan segment `s`."
-  [{:keys [id mass position rotation inertia shape] :as s}]
-  (let [R (z-up-rotation (quat->matrix rotation))
-        box? (= :box (:source inertia))
-        Q (if box? identity3 (quat->matrix (:rotation inertia)))]
-    (assoc s
-           :pos (z-up position) :R R
-           :com (if box? [0.0 0.0 0.0] (z-up (:centre inertia)))
-           ;; the principal axes, columns, in the segment's Z-up frame
-           :principal (mm C Q)
-           :moments (vec (if box?
-                           (box-moments mass (shape-points shape) (or (:margin shape) 0.0))
-                           (:moments inertia)))
-           :static? (zero? (double mass)))))
+  "What the writers need of plan segment `s`; a segment with Bullet's
+  approximation of inertia has the plan's moments, or without them those
+  `bullet` gives it (by default cortex.segment/bullet-moments of its
+  mass and shape)."
+  ([s] (segment-info s (fn [{:keys [mass shape]}] (segment/bullet-moments mass shape))))
+  ([{:keys [mass position rotation inertia] :as s} bullet]
+   (let [R (z-up-rotation (quat->matrix rotation))
+         box? (= :box (:source inertia))
+         Q (if box? identity3 (quat->matrix (:rotation inertia)))]
+     (assoc s
+            :pos (z-up position) :R R
+            :com (if box? [0.0 0.0 0.0] (z-up (:centre inertia)))
+            ;; the principal axes, columns, in the segment's Z-up frame
+            :principal (mm C Q)
+            :moments (vec (or (:moments inertia) (bullet s)))
+            :static? (zero? (double mass))))))
 
 (defn tree
   "How the segments of `plan` hang together as a tree: {:roots [id
@@ -208,9 +211,8 @@
   `segment-info`): its centre of mass at its origin, its principal axes
   its own, its moments Bullet's (`rigid-body-moments`)."
   [s]
-  (let [info (segment-info (assoc s :inertia {:source :box}))]
-    (cond-> info
-      (not (:static? info)) (assoc :moments (rigid-body-moments s)))))
+  (segment-info (assoc s :inertia {:source :box})
+                #(if (zero? (double (:mass %))) [0.0 0.0 0.0] (rigid-body-moments %))))
 
 (defn axis-limits
   "Constraint `c`'s limits of `kind` (\"lin\" or \"ang\") on its X, Y

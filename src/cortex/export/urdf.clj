@@ -2,8 +2,8 @@
 (ns cortex.export.urdf
   "A creature's plan as a URDF document (see `urdf`)."
   (:require [clojure.string :as str]
-            [cortex.export.geometry :refer [C axis-turn identity3 matrix->quat mesh-files mm mv
-                                            pieces quat->matrix transpose v* v+ v- z-up]]
+            [cortex.export.geometry :refer [C axis-turn flat-notes identity3 matrix->quat mesh-files
+                                            mm mv pieces quat->matrix transpose v* v+ v- z-up]]
             [cortex.export.model :refer [blender->jme muscles physics-tab? plan-dofs segment-info
                                          tab-joints tab-plan-dofs tab-segment-info tab-tree tree]]
             [cortex.export.xml :refer [text xml]]))
@@ -56,6 +56,7 @@
     [:mass {:value (double mass)}]
     (let [[a b c] moments]
       [:inertia {:ixx a :ixy 0.0 :ixz 0.0 :iyy b :iyz 0.0 :izz c}])]
+   (flat-notes meshes id)
    (for [[k whole] (map-indexed vector (pieces shape))
          {:keys [type] :as piece} (urdf-solids whole)
          tag [:visual :collision]]

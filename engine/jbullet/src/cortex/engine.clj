@@ -13,8 +13,6 @@
            (com.bulletphysics.dynamics DynamicsWorld RigidBody)
            (com.bulletphysics.dynamics.constraintsolver ConeTwistConstraint HingeConstraint SolverMode)
            (com.bulletphysics.linearmath MatrixUtil ScalarUtil Transform)
-           (com.bulletphysics.linearmath.convexhull HullDesc HullFlags HullLibrary HullResult)
-           (com.bulletphysics.util IntArrayList ObjectArrayList)
            (com.jme3.bullet PhysicsSpace)
            (com.jme3.bullet.collision PhysicsCollisionObject)
            (com.jme3.bullet.collision.shapes CollisionShape GImpactCollisionShape
@@ -291,53 +289,10 @@
     (when (instance? ConvexHullShape s)
       (mapv triple (.getPoints ^ConvexHullShape s)))))
 
-(defn- flat?
-  "Whether `points` ([[x y z] ...], at least one) enclose no volume: all
-  within a millionth of their size of one plane, or of one line."
-  [points]
-  (let [vs (mapv (fn [[x y z]] (javax.vecmath.Vector3d. x y z)) points)
-        ^javax.vecmath.Vector3d p0 (first vs)
-        minus (fn [^javax.vecmath.Vector3d a] (doto (javax.vecmath.Vector3d.) (.sub a p0)))
-        ^javax.vecmath.Vector3d e1 (minus (apply max-key #(.length ^javax.vecmath.Vector3d (minus %)) vs))
-        size (.length e1)
-        across (fn [p] (doto (javax.vecmath.Vector3d.) (.cross e1 (minus p))))
-        ^javax.vecmath.Vector3d n (across (apply max-key #(.length ^javax.vecmath.Vector3d (across %)) vs))]
-    (or (<= (.length n) (* 1e-6 size size))
-        (do (.normalize n)
-            (every? #(<= (Math/abs (.dot n (minus %))) (* 1e-6 size)) vs)))))
-
-(defn- hull-volume-of
-  "The volume of the convex hull of `points`, by jBullet's HullLibrary."
-  ^double [points]
-  (let [ps (doto (ObjectArrayList.)
-             (.addAll ^java.util.Collection
-                      (map (fn [[x y z]] (javax.vecmath.Vector3f. (float x) (float y) (float z))) points)))
-        desc (HullDesc. HullFlags/TRIANGLES (count points) ps)
-        result (HullResult.)]
-    (if-not (.createConvexHull (HullLibrary.) desc result)
-      0.0
-      (let [^ObjectArrayList vs (.outputVertices result)
-            ^IntArrayList is (.indices result)
-            v (fn [i] (let [^javax.vecmath.Vector3f p (.get vs (.get is (int i)))]
-                        [(double (.x p)) (double (.y p)) (double (.z p))]))]
-        (Math/abs
-         (double
-          (reduce + (for [t (range (quot (.numIndices result) 3))
-                         :let [[ax ay az] (v (* 3 t)) [bx by bz] (v (+ 1 (* 3 t)))
-                               [cx cy cz] (v (+ 2 (* 3 t)))]]
-                     (/ (+ (* ax (- (* by cz) (* bz cy)))
-                           (* ay (- (* bz cx) (* bx cz)))
-                           (* az (- (* bx cy) (* by cx))))
-                        6.0)))))))))
-
-(defn hull-volume
-  "The volume of the convex hull of `points` ([[x y z] ...]); 0 when they
-  enclose none (jBullet's HullLibrary gives a flat set a volume of its
-  own making: 0.4 for a unit triangle)."
-  ^double [points]
-  (if (or (< (count (distinct points)) 4) (flat? points))
-    0.0
-    (hull-volume-of points)))
+(def ^{:arglists '([points])
+       :doc "The volume of the convex hull of `points` ([[x y z] ...]): see
+  cortex.geometry/hull-volume."}
+  hull-volume geometry/hull-volume)
 
 (defn hull-margin
   "The collision margin cortex gives hull shapes: jme3-jbullet's own, 0."
