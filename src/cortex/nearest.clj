@@ -6,7 +6,7 @@
 
   Entry points: `joints` (the joint markers), `segment-index`,
   `index-of`, `nearest-segments`, `targets-near`, `joint-targets`,
-  `tolerance`, `segment-sides`, `fmt-length`, `joint-doubts`,
+  `tolerance`, `segment-sides`, `sheet?`, `joint-reach`, `fmt-length`, `joint-doubts`,
   `duplicate-doubts`, `naming-doubts`, `overlap-warnings`,
   `limit-warnings`."
   (:require [clojure.string :as str]
@@ -203,8 +203,10 @@
                      (> r limit)
                      (throw (ex-info (str what " " (pr-str (.getName joint))
                                           ": found " (count found)
-                                          " segment(s) near it, a " what " needs "
-                                          (if (= 2 need) "two" need))
+                                          " segment(s) near it"
+                                          (when (seq found)
+                                            (str " (" (str/join ", " (sort (map segment-name found))) ")"))
+                                          ", a " what " needs " (if (= 2 need) "two" need))
                                      {(keyword what) (.getName joint)
                                       :found (map segment-name found)}))
                      :else (recur (* 2 r)))))
@@ -436,6 +438,21 @@
                      (repeat 3 (.getRadius ^com.jme3.bounding.BoundingSphere b)))]
     (vec (sort (map #(* 2.0 (Math/abs (double %1)) (double %2)) [(.x s) (.y s) (.z s)] [ex ey ez])))))
 
+(defn sheet?
+  "Whether segment `geom` is a sheet: its thinnest side under a tenth of
+  its next (a plane's mesh, a fin, a leaf, a paper-thin foot)."
+  [geom]
+  (let [[t w] (segment-sides geom)]
+    (< (double t) (* 0.1 (double w)))))
+
+(defn joint-reach
+  "How far a joint empty may lie from segment `geom` and still be at it
+  (a far joint's rule): half its thinnest side, or, for a sheet, a
+  twentieth of its width (half a tenth of its next side)."
+  ^double [geom]
+  (let [[t w] (segment-sides geom)]
+    (* 0.5 (max (double t) (* 0.1 (double w))))))
+
 (defn fmt-length
   "`x`, a length, as text: three decimals, or more for a small one, so
   that a creature a hundredth of the size reads three figures too."
@@ -484,18 +501,30 @@
     {:inside (:name y) :depth dy :gap g
      :near? (and (at-most? g allowed) (at-most? dx (+ dy g allowed)))}))
 
+(defn- reach-text
+  "What the reach of each of segments `names` is, in words, with its
+  figure: half its thinnest side, or a twentieth of a sheet's width."
+  [names allowed sheets]
+  (let [plain (remove sheets names)]
+    (str/join " and "
+              (concat (when (seq plain)
+                        [(str "half the thinnest side of "
+                              (str/join " and of " (for [n plain] (str n " (" (fmt (allowed n)) ")"))))])
+                      (for [n (filter sheets names)]
+                        (str "a twentieth of the width of " n ", a sheet (" (fmt (allowed n)) ")"))))))
+
 (defn- far-message
-  [joint-name a b outside allowed {:keys [inside depth gap]}]
+  [joint-name a b outside allowed sheets {:keys [inside depth gap]}]
   (if inside
     (let [{:keys [name distance]} (first outside)]
       (str "joint " (pr-str joint-name) " lies " (fmt depth) " inside " inside " and "
            (fmt distance) " from " name ", more than its depth"
            (when (Double/isFinite gap) (str ", the gap between the two (" (fmt gap) ")"))
-           " and half the thinnest side of " name " (" (fmt (allowed name)) ") together,"
+           " and " (reach-text [name] allowed sheets) " together,"
            " so it is not where the two meet; move the empty into the gap where they meet"))
     (str "joint " (pr-str joint-name) " is " (fmt (:distance a)) " from " (:name a) " and "
-         (fmt (:distance b)) " from " (:name b) ", more than half the thinnest side of "
-         (str/join " and of " (for [{:keys [name]} outside] (str name " (" (fmt (allowed name)) ")")))
+         (fmt (:distance b)) " from " (:name b) ", more than "
+         (reach-text (map :name outside) allowed sheets)
          ": it lies outside the two it joins; move the empty into the gap where the two meet")))
 
 (defn joint-doubts
@@ -503,7 +532,7 @@
   segments (see `nearest-segments`) and the creature's `tolerance` (the
   ambiguity window): maps of :kind (:ambiguous-joint or :far-joint),
   :joint, :segments, :distances, :tolerance, for a far joint :allowed
-  (half of each segment's thinnest side) and, when `point` (the empty's
+  (each segment's `joint-reach`) and, when `point` (the empty's
   [x y z]) lies inside one of the two, :inside (how the other stands
   from that one's surface: see the chapter), and a :message saying what
   to change.
@@ -522,8 +551,8 @@
                              (or (<= d (* 1.5 d2)) (<= (- d d2) (* 0.25 (double tolerance)))))
                           more))
          near (into [a b] rivals)
-         allowed (into {} (for [{:keys [name geom]} [a b]]
-                            [name (* 0.5 (double (first (segment-sides geom))))]))
+         allowed (into {} (for [{:keys [name geom]} [a b]] [name (joint-reach geom)]))
+         sheets (set (for [{:keys [name geom]} [a b] :when (sheet? geom)] name))
          beyond (remove #(at-most? (:distance %) (allowed (:name %))) [a b])
          ;; never far from a segment it lies inside; judged from that one's surface
          ;; each segment's triangles worked out once, and only if asked
@@ -549,7 +578,7 @@
        (conj (cond-> (assoc base :kind :far-joint
                             :segments [(:name a) (:name b)]
                             :allowed allowed
-                            :message (far-message joint-name a b outside allowed from))
+                            :message (far-message joint-name a b outside allowed sheets from))
                from (assoc :inside from)))))))
 
 (defn duplicate-doubts

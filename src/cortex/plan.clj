@@ -15,6 +15,7 @@
             [cortex.segment :as segment]
             [cortex.sense :as sense]
             [cortex.strength :as strength]
+            [cortex.util :as util]
             [cortex.vision :as vision])
   (:import (com.jme3.bullet.control RigidBodyControl)
            (com.jme3.scene Geometry Node Spatial)
@@ -104,6 +105,45 @@
                         "), which is not the shape Blender shows;"
                         " apply them in Blender (Object > Convert > Mesh) to build that")})))
 
+(defn- mass-warnings
+  "A warning for each of the planned `segments` that moves and is massed
+  by Bullet's box for want of a closed mesh, unless `opts` ask for that
+  everywhere."
+  [segments opts]
+  (vec (for [{:keys [id mass inertia]} segments
+             :when (and (= :box (:source inertia)) (pos? (double mass))
+                        (not= :box (:mass-properties opts)))]
+         {:kind :mass-properties :segment id :warning? true
+          :message (str "segment " (pr-str id) " encloses no volume (its mesh is open, or flat),"
+                        " so its centre of mass and inertia are Bullet's guess, a box round its"
+                        " shape at its origin (moments " (str/join " " (map #(format "%.4g" (double %))
+                                                                              (:moments inertia)))
+                        "); close its mesh, or give it a thickness, to have them from the mesh")})))
+
+(defn- faceless-meshes
+  "The names of `creature`'s mesh objects that hold no Geometry: meshes
+  with no faces, which are no segment."
+  [^Node creature]
+  (sort (for [n (util/node-seq creature)
+              :when (and (instance? Node n) (= "MESH" (.getUserData ^Node n "blender-type"))
+                         (not-any? #(instance? Geometry %) (.getChildren ^Node n)))]
+          (.getName ^Node n))))
+
+(defn- with-faceless-note
+  "`f`'s value; when it throws that a joint found too few segments, the
+  error says which of `creature`'s meshes are no segment."
+  [creature f]
+  (try (f)
+       (catch clojure.lang.ExceptionInfo e
+         (let [none (faceless-meshes creature)]
+           (if (and (:found (ex-data e)) (seq none))
+             (throw (ex-info (str (ex-message e) "; " (str/join ", " none)
+                                  (if (next none) " are meshes" " is a mesh")
+                                  " with no faces (edges or points only), which is no segment:"
+                                  " give it faces, or delete it")
+                             (assoc (ex-data e) :faceless none) e))
+             (throw e))))))
+
 (defn- measure-joint
   "Where joint empty `marker` is and which segments it is nearest."
   [index tol ^Spatial marker]
@@ -131,7 +171,8 @@
   :tolerance given, `tol` is the whole window (see joint-doubts)."
   [^Node creature index tol id-of {:keys [strict? tolerance]}]
   (let [given? (some? tolerance)
-        found (mapv #(segment/in-creature creature (fn [] (measure-joint index tol %)))
+        found (mapv #(segment/in-creature creature
+                                          (fn [] (with-faceless-note creature (fn [] (measure-joint index tol %)))))
                     (nearest/joints creature))
         naming (nearest/naming-doubts creature)
         doubts (vec (concat (remove :warning? naming)
@@ -280,6 +321,7 @@
                :eyes (or eyes [])
                :doubts (segment/plain (:doubts js []))
                :warnings (segment/plain (-> (modifier-warnings creature)
+                                              (into (mass-warnings segments opts))
                                               (into (:warnings js []))
                                               (into (:warnings tab))))})
         tab? (assoc :constraints (:constraints tab)

@@ -6,6 +6,8 @@
             [cortex.body :as body]
             [cortex.drops :as drops]
             [cortex.engine :as engine]
+            [cortex.nearest :as nearest]
+            [cortex.segment :as segment]
             [cortex.util :as util]
             [cortex.world :as world])
   (:import (com.jme3.bullet.control RigidBodyControl)
@@ -428,6 +430,55 @@
       (is (nil? (difference at-1 (verdict file scale false))) file)))
   (doseq [[file scale] [["hand.blend" 1.0] ["hand-0.01.blend" 0.01] ["hand-100.blend" 100.0]]]
     (is (= [:refused [[:far-joint "thumb-palm"]]] (verdict file scale true)) file)))
+
+(def ^:private flat-dir "test/fixtures/flat-strangers/")
+
+(def ^:private flat-manifest
+  (delay (into {} (for [f (get (read-json (slurp (str flat-dir "manifest.json"))) "files")]
+                    [(get f "file") f]))))
+
+(defn- flat-stranger ^Node [file] (util/load-blender-model (str flat-dir file)))
+
+(deftest strangers-creatures-with-flat-parts-build
+  (doseq [file ["fish.blend" "sloppy-fish.blend" "glider.blend" "leaf-walker.blend"
+                "leaf-walker-on-plate.blend" "flat-hexagon-paddle.blend"]
+          :let [want (@flat-manifest file)
+                c (flat-stranger file)
+                flat (set (for [s (get want "segments") :when (get s "flat")] (get s "name")))
+                moving (set (for [s (get want "segments") :when (pos? (get s "mass_kg"))] (get s "name")))
+                geoms (into {} (map (juxt segment/segment-name identity)) (segment/segments c))
+                {:keys [joints segments warnings]} (body/report (body/body! c))]]
+    (testing file
+      (is (= (into {} (for [j (get want "joints")] [(get j "name") (set (get j "meant_to_join"))]))
+             (into {} (map (juxt :name (comp set :segments))) joints)))
+      (is (= (set (keys geoms)) (set (map :name segments))) "every part, flat or closed, is a segment")
+      (is (seq flat))
+      (is (= (sort (filter moving flat))
+             (sort (keep #(when (= :mass-properties (:kind %)) (:segment %)) warnings)))
+          "each moving flat part is massed by Bullet's guess, and warned of")
+      (is (not-any? #(nearest/sheet? (geoms %)) (remove flat (keys geoms))) "no closed part is a sheet")
+      (when (#{"sloppy-fish.blend" "leaf-walker.blend" "flat-hexagon-paddle.blend"} file)
+        (is (every? #(nearest/sheet? (geoms %)) flat) "a plane in its own axes is a sheet")))))
+
+(defn- moved-refusal
+  "The error `body!` gives flat stranger `file` with its joint `joint`
+  moved by [x y z] (jME's axes), or nil when it builds."
+  [file joint [x y z]]
+  (let [c (flat-stranger file)]
+    (.move ^Spatial (first (filter #(= joint (.getName ^Spatial %)) (util/node-seq c)))
+           (float x) (float y) (float z))
+    (try (body/body! c) nil (catch clojure.lang.ExceptionInfo e (ex-message e)))))
+
+(deftest a-far-joint-at-a-sheet-is-named
+  (is (re-find #"joint \"ankle-front-l\" is 0\.0500 from foot-front-l and 0\.0500 from leg-front-l, more than half the thinnest side of leg-front-l \(0\.0400\) and a twentieth of the width of foot-front-l, a sheet \(0\.0100\)"
+               (str (moved-refusal "leaf-walker.blend" "ankle-front-l" [0 -0.05 0]))))
+  (is (re-find #"joint \"shoulder-left\" lies 0\.00\d+ inside body and 0\.05\d+ from fin-left, .* a twentieth of the width of fin-left, a sheet \(0\.0100\) together"
+               (str (moved-refusal "sloppy-fish.blend" "shoulder-left" [0 0.05 0]))))
+  (is (nil? (moved-refusal "leaf-walker.blend" "ankle-front-l" [0 -0.005 0]))
+      "5 mm below its foot, the ankle is at it")
+  (is (re-find #"joint \"blade-joint\": found 1 segment\(s\) near it \(hub\), a joint needs two; blade is a mesh with no faces"
+               (str (try (body/body! (flat-stranger "line-blade.blend")) nil
+                         (catch clojure.lang.ExceptionInfo e (ex-message e)))))))
 
 (defn- mutate
   "`bs` damaged by seeded random `rng`: flipped bits, a run of random
