@@ -55,6 +55,11 @@ outside       `inside` falls; `outside` has rigid body settings but was taken
               `carrier` by a FIXED constraint (a zero-size body);
               `lift` is Animated; `plate` is an ACTIVE MESH body that is not
               Dynamic, and `pebble` falls on it.
+sheets        planes (four vertices, one face, no thickness) falling as
+              Convex Hulls with Blender's margin: `flat` dropped flat,
+              `tilted` and `steep` turned, `box-shaped` with the Box shape
+              (a box no thickness thick), `on-block` onto an ACTIVE `block`;
+              beside them `hull-cube`, a cube with the Convex Hull shape.
 deactivation  `sleeper` starts deactivated in mid-air (deactivation on) and
               stays there until `hammer` falls on it; `rester` (deactivation
               on, thresholds 0.4 and 0.5) and `restless` (Blender's default,
@@ -461,9 +466,35 @@ def substeps():
         prev = bar
 
 
+def plane(name, half, location, rotation=(0, 0, 0), shape="CONVEX_HULL", mass=1.0):
+    """A Plane's mesh (four vertices, one face, no thickness) as an ACTIVE
+    rigid body of collision `shape`, Blender's default margin (0.04)."""
+    hx, hy = half
+    me = bpy.data.meshes.new(name)
+    me.from_pydata([(-hx, -hy, 0), (hx, -hy, 0), (hx, hy, 0), (-hx, hy, 0)], [], [(0, 1, 2, 3)])
+    me.update()
+    o = mf.new_object(name, me, location=location, rotation=rotation)
+    activate(o)
+    bpy.ops.rigidbody.object_add(type="ACTIVE")
+    o.rigid_body.collision_shape = shape
+    o.rigid_body.mass = mass
+    return o
+
+
+def sheets():
+    ground()
+    plane("flat", (0.3, 0.3), (-2, 0, 0.5))
+    plane("tilted", (0.3, 0.2), (0, 0, 0.6), rotation=(0.5, 0, 0))
+    plane("steep", (0.25, 0.25), (2, 0, 0.8), rotation=(1.2, 0.3, 0))
+    plane("box-shaped", (0.25, 0.15), (0, 2, 0.7), rotation=(0.3, 0.2, 0), shape="BOX")
+    box("block", (0.3, 0.3, 0.2), (0, -2, 0.2))
+    plane("on-block", (0.2, 0.2), (0, -2, 0.8), rotation=(0.2, 0, 0))
+    box("hull-cube", (0.2, 0.2, 0.2), (-2, 2, 0.6), rotation=(0.3, 0, 0), shape="CONVEX_HULL")
+
+
 CASES = [("ragdoll", ragdoll), ("addon-ragdoll", addon_ragdoll), ("rig-chain", rig_chain), ("kick", kick), ("collisions", collisions),
          ("breaking", breaking), ("outside", outside), ("deactivation", deactivation),
-         ("substeps", substeps)]
+         ("substeps", substeps), ("sheets", sheets)]
 
 
 def main(cases=None, default_folder="test/fixtures/physics-sim"):

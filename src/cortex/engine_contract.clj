@@ -21,7 +21,7 @@
     ;; shapes
     hull-margin [[0] "the collision margin cortex gives hull shapes"]
     thin [:value "the thickness below which a body is small (the shapes chapter)"]
-    thickness [[1] "the smallest extent of a convex shape (a compound's thinnest child) along its axes, or nil"]
+    thickness [[1] "how thick a convex shape counts as (a compound's thinnest child): its smallest extent along its axes, a sheet's a tenth of the next; or nil"]
     hull-points [[1] "the points of a hull shape (of a compound's first child), or nil"]
     hull-volume [[1] "the volume of the convex hull of points [[x y z] ...]"]
     mesh-shape [[1] "a static triangle-mesh shape of a jME mesh"]

@@ -4,7 +4,8 @@
   and how thin a set of points is, and the thickness below which a body
   is small.
 
-  Entry points: `hull-volume`, `points-thickness`, `thin`."
+  Entry points: `hull-volume`, `points-sides`, `points-thickness`,
+  `sheet-thickness`, `thin`."
   (:require [cortex.export.geometry :as xg]))
 
 (set! *warn-on-reflection* true)
@@ -15,12 +16,27 @@
   0.062). See the shapes chapter, \"Small and thin bodies\"."
   0.05)
 
+(defn points-sides
+  "The extents of `points` ([[x y z] ...], at least one) along each
+  axis, [x y z]."
+  [points]
+  (vec (for [i (range 3) :let [xs (map #(double (nth % i)) points)]]
+         (- (double (apply max xs)) (double (apply min xs))))))
+
 (defn points-thickness
   "The smallest extent of `points` ([[x y z] ...], at least one) along
   an axis."
   ^double [points]
-  (apply min (for [i (range 3) :let [xs (map #(double (nth % i)) points)]]
-               (- (double (apply max xs)) (double (apply min xs))))))
+  (apply min (points-sides points)))
+
+(defn sheet-thickness
+  "How thick a body whose extents along its own axes are `sides` counts
+  as: its smallest extent, or for a sheet (smallest under a tenth of the
+  next; a plane's polygon has none) a tenth of the next. See the shapes
+  chapter, \"Flat parts\"."
+  ^double [sides]
+  (let [[a b] (sort (map double sides))]
+    (max a (* 0.1 b))))
 
 (defn hull-volume
   "The volume of the convex hull of `points` ([[x y z] ...]); 0 when

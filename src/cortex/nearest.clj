@@ -10,6 +10,7 @@
   `duplicate-doubts`, `naming-doubts`, `overlap-warnings`,
   `limit-warnings`."
   (:require [clojure.string :as str]
+            [cortex.geometry :as geometry]
             [cortex.projection :as projection]
             [cortex.segment :as segment :refer [segments segment-name]]
             [cortex.sense :as sense]
@@ -447,11 +448,11 @@
 
 (defn joint-reach
   "How far a joint empty may lie from segment `geom` and still be at it
-  (a far joint's rule): half its thinnest side, or, for a sheet, a
-  twentieth of its width (half a tenth of its next side)."
+  (a far joint's rule): half how thick it counts as, which is its
+  thinnest side or, for a sheet, a tenth of its width
+  (cortex.geometry/sheet-thickness)."
   ^double [geom]
-  (let [[t w] (segment-sides geom)]
-    (* 0.5 (max (double t) (* 0.1 (double w))))))
+  (* 0.5 (geometry/sheet-thickness (segment-sides geom))))
 
 (defn fmt-length
   "`x`, a length, as text: three decimals, or more for a small one, so

@@ -168,7 +168,8 @@
                         :points (mapv segment/vector-data
                                       (segment/simplify-hull points segment/max-hull-points)))
         margin (:margin rb)
-        use-margin? (or (:use-margin rb) (#{"CONVEX_HULL" "MESH" "CONE"} (:shape rb)))
+        ;; a Convex Hull's margin is embedded in it, or none (see above)
+        use-margin? (or (:use-margin rb) (#{"MESH" "CONE"} (:shape rb)))
         [shape warnings]
         (case (:shape settings)
           "BOX" [{:type :box :half-extents (:half-extents settings)}]

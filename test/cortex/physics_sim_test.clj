@@ -207,6 +207,16 @@
       (is (< (Math/abs (- 0.9 (y "c"))) 0.05))
       (is (< (Math/abs (- 0.9 (y "e"))) 0.05)))))
 
+(deftest planes-fall-as-in-blender
+  (let [r (case-run "sheets")
+        y (fn [n] (second (second (our-transform (:creature r) n))))]
+    (is (< (relative-median r 2) 0.02))
+    (is (< (relative-median r at-4s) 0.02))
+    (testing "each plane lies on the ground or the block, as Blender's does"
+      (doseq [[n h] [["flat" 0.0] ["tilted" 0.0] ["steep" 0.0] ["box-shaped" 0.0] ["on-block" 0.4]
+                     ["hull-cube" 0.2]]]
+        (is (< (Math/abs (- h (double (y n)))) 0.01) (str n " at " (y n)))))))
+
 (deftest bodies-outside-the-world
   (let [r (case-run "outside")
         creature (:creature r)

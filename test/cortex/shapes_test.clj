@@ -371,6 +371,56 @@
         (println (format "the lying 8-sided cylinder at a hundredth on jBullet (left open): %.3f of its height, %.1f degrees"
                          (double r) (double a)))))))
 
+(defn- drop-square
+  "[how high the lowest corner of a flat square `w` wide lies, how far
+  it turned in degrees, its fastest in the last second] after it is
+  dropped tilted by `tilt` about X and left for 3 s."
+  [w tilt]
+  (let [h (/ (double w) 2)
+        pts [[(- h) 0 (- h)] [h 0 (- h)] [h 0 h] [(- h) 0 h]]
+        space (doto (PhysicsSpace. (Vector3f. -1000 -1000 -1000) (Vector3f. 1000 1000 1000)
+                                   PhysicsSpace$BroadphaseType/DBVT)
+                engine/configure-space!)
+        floor (PhysicsRigidBody. ^CollisionShape (util/locked-shape #(BoxCollisionShape. (Vector3f. 10 0.5 10)))
+                                 (float 0))
+        body (PhysicsRigidBody. (shapes/collision-shape {:type :hull :points pts}) (float 1))]
+    (.setPhysicsLocation floor (Vector3f. 0 -0.5 0))
+    (.setPhysicsRotation body (doto (Quaternion.) (.fromAngles (float tilt) 0 0)))
+    (.setPhysicsLocation body (Vector3f. 0 (float (+ (* h (Math/sin tilt)) (* 0.05 w))) 0))
+    (.addCollisionObject space floor)
+    (.addCollisionObject space body)
+    (is (= 2 (world/step-thin-bodies! space)))
+    (let [speeds (vec (for [_ (range 180)]
+                        (do (.update space (float (/ 1 60.0)))
+                            (let [[a b c] (engine/linear-velocity (engine/rigid-body body))]
+                              (Math/sqrt (+ (* a a) (* b b) (* c c)))))))
+          p (.getPhysicsLocation body (Vector3f.))
+          q (.getPhysicsRotation body (Quaternion.))
+          turn (Math/toDegrees (.toAngleAxis q (Vector3f.)))]
+      [(apply min (for [[x y z] pts] (.y (.add (.mult q (Vector3f. (float x) (float y) (float z))) p))))
+       (min turn (- 360.0 turn))
+       (apply max (subvec speeds 120))])))
+
+(deftest a-flat-part-rests-on-its-plate
+  (is (close? (engine/thickness (shapes/collision-shape {:type :hull :points [[-0.1 0 -0.1] [0.1 0 -0.1]
+                                                                              [0.1 0 0.1] [-0.1 0 0.1]]}))
+              0.02 1e-4)
+      "a sheet counts as a tenth of its width thick")
+  (doseq [tilt [0.0 0.3 0.8]
+          :let [[low turn speed] (drop-square 0.2 tilt)]]
+    (testing (str "tilted " tilt)
+      (is (< 0.0 low 0.003) (str "its lowest corner at " low))
+      (is (< turn 2.0) (str "turned " turn " degrees"))
+      (is (< speed 0.05) (str "moving at " speed " m/s"))))
+  (let [c (doto (util/load-blender-model "test/fixtures/flat-strangers/leaf-walker.blend")
+            (.move (float 0) (float 0.8) (float 0)))
+        _ (body/body! c)
+        s (sim/simulation c {:floor {:height 0 :friction 1.0} :observe #{:segments}})
+        obs (try (vec (repeatedly 300 #(sim/step! s nil))) (finally (sim/destroy! s)))
+        fastest (apply max (for [o (subvec obs 270) [_ {v :velocity}] (:segments o)]
+                             (Math/sqrt (reduce + (map * v v)))))]
+    (is (< fastest 0.05) (str "the walker on flat feet, dropped limp, still moving at " fastest " m/s after 5 s"))))
+
 (defn- extent
   "[lowest highest] y of any vertex of the segments under `node`, in the
   world, its transforms brought up to date from `root`."

@@ -70,10 +70,15 @@ public final class SmallConvexAlgorithm extends ManifoldAlgorithm {
         return !(round || shape.getMargin() >= m);
     }
 
-    /** The smallest extent of convex `shape` along its axes. */
+    /** How thick convex `shape` counts as: its smallest extent along
+     * its axes, or for a sheet (thinner than a tenth of its next
+     * extent; a plane's polygon is not thick at all) a tenth of that
+     * next extent, as cortex.geometry/sheet-thickness says. */
     public static float thickness(CollisionShape shape) {
         Vector3f e = extent((ConvexShape) shape, new Vector3f());
-        return Math.min(e.x, Math.min(e.y, e.z));
+        float[] s = {e.x, e.y, e.z};
+        java.util.Arrays.sort(s);
+        return Math.max(s[0], 0.1f * s[1]);
     }
 
     /** Have every pair of convex shapes in `dispatcher` meet through
@@ -196,7 +201,7 @@ public final class SmallConvexAlgorithm extends ManifoldAlgorithm {
         final ConvexShape shape;
         final float k, margin;
         final boolean drawn;
-        final Vector3f centre = new Vector3f(), shrink = new Vector3f(1f, 1f, 1f);
+        final Vector3f centre = new Vector3f(), shrink = new Vector3f(1f, 1f, 1f), pad = new Vector3f();
         Scaled(ConvexShape shape, float k, float given) {
             this.shape = shape;
             this.k = k;
@@ -206,7 +211,12 @@ public final class SmallConvexAlgorithm extends ManifoldAlgorithm {
             } else {
                 Vector3f hi = extent(shape, centre);
                 float m = given / k;
-                shrink.set(1f - 2f * m / hi.x, 1f - 2f * m / hi.y, 1f - 2f * m / hi.z);
+                // an axis thinner than the margin's two sides (a plane's
+                // polygon) is not drawn in past its middle, and its core is
+                // given a thickness of one margin, so that EPA has a solid
+                shrink.set(Math.max(0f, 1f - 2f * m / hi.x), Math.max(0f, 1f - 2f * m / hi.y),
+                           Math.max(0f, 1f - 2f * m / hi.z));
+                pad.set(hi.x < 2f * m ? m / 2 : 0f, hi.y < 2f * m ? m / 2 : 0f, hi.z < 2f * m ? m / 2 : 0f);
                 margin = given;
             }
         }
@@ -220,6 +230,9 @@ public final class SmallConvexAlgorithm extends ManifoldAlgorithm {
                 out.sub(centre);
                 out.set(out.x * shrink.x, out.y * shrink.y, out.z * shrink.z);
                 out.add(centre);
+                out.x += dir.x < 0f ? -pad.x : pad.x;
+                out.y += dir.y < 0f ? -pad.y : pad.y;
+                out.z += dir.z < 0f ? -pad.z : pad.z;
             }
             out.scale(k);
             return out;

@@ -303,9 +303,10 @@
   thin geometry/thin)
 
 (defn thickness
-  "The smallest extent of `shape` along its own axes (of a compound, its
-  thinnest child's), read by the shape's supporting points; nil for a
-  shape that is not convex."
+  "How thick `shape` counts as (of a compound, its thinnest child): its
+  smallest extent along its own axes, or for a sheet a tenth of the next
+  (as cortex.geometry/sheet-thickness), read by the shape's supporting
+  points; nil for a shape that is not convex."
   [^CollisionShape shape]
   (letfn [(t [^com.bulletphysics.collision.shapes.CollisionShape s]
             (cond (instance? CompoundShape s)

@@ -310,12 +310,13 @@
   0.001)
 
 (defn thickness
-  "The smallest extent of `shape` along its own axes (of a compound, its
-  thinnest child's): a hull's points', a box's or cylinder's, a sphere's
-  or capsule's diameter, a cone's smaller of diameter and height; nil
-  for any other shape. Read from the shape's own figures: Minie's
-  bounding box recalculates the shape's cached one, which moves the
-  pinned drops."
+  "How thick `shape` counts as (of a compound, its thinnest child): its
+  smallest extent along its own axes, or for a sheet a tenth of the next
+  (cortex.geometry/sheet-thickness): a hull's points', a box's or
+  cylinder's, a sphere's or capsule's diameter, a cone's smaller of
+  diameter and height; nil for any other shape. Read from the shape's
+  own figures: Minie's bounding box recalculates the shape's cached one,
+  which moves the pinned drops."
   [^CollisionShape shape]
   (letfn [(t [^CollisionShape s]
             (condp instance? s
@@ -323,13 +324,14 @@
               (reduce min ##Inf (map #(t (.getShape ^ChildCollisionShape %))
                                      (.listChildren ^CompoundCollisionShape s)))
               HullCollisionShape
-              (geometry/points-thickness (partition 3 (.copyHullVertices ^HullCollisionShape s)))
+              (geometry/sheet-thickness
+               (geometry/points-sides (partition 3 (.copyHullVertices ^HullCollisionShape s))))
               com.jme3.bullet.collision.shapes.BoxCollisionShape
               (let [e (.getHalfExtents ^com.jme3.bullet.collision.shapes.BoxCollisionShape s nil)]
-                (* 2.0 (min (.x e) (.y e) (.z e))))
+                (geometry/sheet-thickness [(* 2.0 (.x e)) (* 2.0 (.y e)) (* 2.0 (.z e))]))
               com.jme3.bullet.collision.shapes.CylinderCollisionShape
               (let [e (.getHalfExtents ^com.jme3.bullet.collision.shapes.CylinderCollisionShape s nil)]
-                (* 2.0 (min (.x e) (.y e) (.z e))))
+                (geometry/sheet-thickness [(* 2.0 (.x e)) (* 2.0 (.y e)) (* 2.0 (.z e))]))
               com.jme3.bullet.collision.shapes.SphereCollisionShape
               (* 2.0 (.getRadius ^com.jme3.bullet.collision.shapes.SphereCollisionShape s))
               com.jme3.bullet.collision.shapes.CapsuleCollisionShape
