@@ -1105,6 +1105,31 @@
       (check-urdf p urdf))
     (skip "cortex.export-test/a-flat-segment-is-written-as-a-plate, in MuJoCo")))
 
+(deftest a-walker-on-flat-feet-drops-as-in-mujoco
+  (if-let [py (python)]
+    (let [c (util/load-blender-model "test/fixtures/flat-strangers/leaf-walker.blend")
+          _ (drops/lift! c)
+          p (plan/plan c)
+          dir (str (Files/createTempDirectory "cortex-walker" (make-array FileAttribute 0)))
+          mj (str dir "/walker.xml")
+          _ (ex/write! p mj nil)
+          _ (body/body! c)
+          ours (cortex-drop c p nil)
+          {:strs [mujoco drop]} (get (check-export py dir [{:name "walker" :mjcf mj :limp_only true
+                                                            :seconds seconds}])
+                                     "walker")
+          sz (size p)]
+      (is (nil? (get mujoco "error")))
+      (is (empty? (get mujoco "warnings")))
+      (is (= {} (get drop "warnings")) "MuJoCo warned during the drop")
+      (doseq [[label i] [["after 1 s" 59] ["at the end" (dec (count (:heights ours)))]]
+              :let [a (double (nth (get drop "heights") i)) b (double (nth (:heights ours) i))]]
+        (println (format "flat-footed walker, limp, %s: MuJoCo %.4f m, cortex %.4f m (size %.3f)" label a b sz))
+        (is (< (Math/abs (- a b)) (* 0.05 sz)) label))
+      (is (< (double (get drop "rest_speed")) 0.1) "MuJoCo's walker comes to rest")
+      (is (< (double (:rest-speed ours)) 0.1) "cortex's walker comes to rest"))
+    (skip "cortex.export-test/a-walker-on-flat-feet-drops-as-in-mujoco")))
+
 (def ^:private eye-turn
   "How the worm with eyes is turned for the camera check: 30 degrees
   about the vertical, after 12 about its own length (jME's X)."
