@@ -1,0 +1,26 @@
+(require '[cortex.engine :as engine] '[cortex.shapes :as shapes] '[cortex.util :as util] '[cortex.world :as world])
+(import '(com.jme3.bullet PhysicsSpace PhysicsSpace$BroadphaseType) '(com.jme3.bullet.objects PhysicsRigidBody)
+        '(com.jme3.bullet.collision.shapes BoxCollisionShape CollisionShape) '(com.jme3.math Vector3f Quaternion))
+(defn drop-plate [w tilt & [th]]
+  (let [h (/ w 2)
+        pts (if th (vec (for [x [(- h) h] y [(- (/ th 2)) (/ th 2)] z [(- h) h]] [x y z])) [[(- h) 0 (- h)] [h 0 (- h)] [h 0 h] [(- h) 0 h]])
+        space (doto (PhysicsSpace. (Vector3f. -1000 -1000 -1000) (Vector3f. 1000 1000 1000) PhysicsSpace$BroadphaseType/DBVT)
+                engine/configure-space!)
+        floor (PhysicsRigidBody. ^CollisionShape (util/locked-shape #(BoxCollisionShape. (Vector3f. 10 0.5 10))) (float 0))
+        body (PhysicsRigidBody. (shapes/collision-shape {:type :hull :points pts}) (float 1))
+        q (doto (Quaternion.) (.fromAngles (float tilt) 0 0))]
+    (.setPhysicsLocation floor (Vector3f. 0 -0.5 0))
+    (.setPhysicsRotation body q)
+    (.setPhysicsLocation body (Vector3f. 0 (float (+ (* h (Math/sin tilt)) (* 0.05 w))) 0))
+    (.addCollisionObject space floor) (.addCollisionObject space body)
+    (world/step-thin-bodies! space)
+    (let [speeds (vec (for [i (range 180)] (do (.update space (float (/ 1 60.0))) (let [[a b c] (engine/linear-velocity (engine/rigid-body body))] (Math/sqrt (+ (* a a) (* b b) (* c c)))))))
+          p (.getPhysicsLocation body (Vector3f.)) r (.getPhysicsRotation body (Quaternion.))
+          low (apply min (for [[x y z] pts] (.y (.add (.mult r (Vector3f. (float x) (float y) (float z))) p))))
+          turn (Math/toDegrees (.toAngleAxis (.mult r (.inverse (Quaternion.))) (Vector3f.)))]
+      (format "width %s tilt %.2f: lowest corner %.5f (%.4f of the width), turned %.1f deg, speed in the last second %.4f"
+              w tilt low (/ low w) (min turn (- 360 turn)) (apply max (subvec speeds 120))))))
+(doseq [w [0.2 0.002] tilt [0.0 0.5]] (println engine/label (drop-plate w tilt)))
+(doseq [[w th] [[0.2 0.002] [0.2 0.02]] tilt [0.5]] (println engine/label "thick" th (drop-plate w tilt th)))
+(doseq [tilt [0.1 0.3 0.5 0.8]] (println engine/label "flat" (drop-plate 0.2 tilt)))
+(System/exit 0)
