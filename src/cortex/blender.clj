@@ -1,7 +1,7 @@
 ;; Generated from org/blender.org by lein tangle: edit the chapter, not this file.
 (ns cortex.blender
   "Load Blender creatures into jME: cortex's own .blend reader, for
-  files saved by Blender 2.48 through 5.0.
+  files saved by Blender 2.48 through 5.2.
 
   Entry points: `load-blender-model` (a file or asset as a jME Node, the
   saved scene or one chosen by name; also reachable as
