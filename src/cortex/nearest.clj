@@ -441,10 +441,11 @@
 
 (defn sheet?
   "Whether segment `geom` is a sheet: its thinnest side under a tenth of
-  its next (a plane's mesh, a fin, a leaf, a paper-thin foot)."
+  its next (a plane's mesh, a fin, a leaf, a paper-thin foot), so that it
+  counts as thicker than it is (cortex.geometry/sheet-thickness)."
   [geom]
-  (let [[t w] (segment-sides geom)]
-    (< (double t) (* 0.1 (double w)))))
+  (let [sides (segment-sides geom)]
+    (> (geometry/sheet-thickness sides) (double (first sides)))))
 
 (defn joint-reach
   "How far a joint empty may lie from segment `geom` and still be at it
