@@ -301,35 +301,53 @@
   (is (= 5 (world/substeps-for 0.002)) "sqrt(0.05 / 0.002), rounded up")
   (is (= world/max-thin-substeps (world/substeps-for 0.0)) "a flat body asks for the most"))
 
-(defn- settle
-  "[where the lowest vertex of `tris` is, as a fraction of their height;
-  how far the segment turned, in degrees] after the segment of shape
-  `shape` (data) is dropped unturned from 5% of that height above a
-  floor and left for 3 s, in as many substeps as a simulation gives its
-  thickness (cortex.world/step-thin-bodies!)."
-  [shape tris]
+(defn- dropped
+  "The body of shape `shape` (data) after it is placed turned by `rot`
+  (a Quaternion) with its origin `y` above a floor and left for 3 s, in
+  as many substeps as a simulation gives its thickness
+  (cortex.world/step-thin-bodies!): {:body :substeps :speeds (its speed
+  after each step)}."
+  [shape ^Quaternion rot y]
   (let [space (doto (PhysicsSpace. (Vector3f. -1000 -1000 -1000) (Vector3f. 1000 1000 1000)
                                    PhysicsSpace$BroadphaseType/DBVT)
                 engine/configure-space!)
         floor (PhysicsRigidBody. ^CollisionShape (util/locked-shape #(BoxCollisionShape. (Vector3f. 10 0.5 10)))
                                  (float 0))
-        body (PhysicsRigidBody. (shapes/collision-shape shape) (float 1))
-        ys (map second (apply concat tris))
-        low (double (apply min ys))
-        height (- (double (apply max ys)) low)]
+        body (PhysicsRigidBody. (shapes/collision-shape shape) (float 1))]
     (.setPhysicsLocation floor (Vector3f. 0 -0.5 0))
-    (.setPhysicsLocation body (Vector3f. 0 (float (+ (- low) (* 0.05 height))) 0))
+    (.setPhysicsRotation body rot)
+    (.setPhysicsLocation body (Vector3f. 0 (float y) 0))
     (.addCollisionObject space floor)
     (.addCollisionObject space body)
-    (world/step-thin-bodies! space)
-    (dotimes [_ 180] (.update space (float (/ 1 60.0))))
-    (let [p (.getPhysicsLocation body nil)
-          q (.getPhysicsRotation body nil)
-          turn (Math/toDegrees (.toAngleAxis q (Vector3f.)))]
-      [(/ (apply min (for [[x y z] (apply concat tris)]
-                       (.y (.add (.mult q (Vector3f. (float x) (float y) (float z))) p))))
-          height)
-       (min turn (- 360.0 turn))])))
+    (let [k (world/step-thin-bodies! space)]
+      {:body body :substeps k
+       :speeds (vec (for [_ (range 180)]
+                      (do (.update space (float (/ 1 60.0)))
+                          (let [[a b c] (engine/linear-velocity (engine/rigid-body body))]
+                            (Math/sqrt (+ (* a a) (* b b) (* c c)))))))})))
+
+(defn- lowest-and-turn
+  "[how high the lowest of `points` ([x y z]s in the body's frame) lies,
+  how far `body` turned in degrees]."
+  [^PhysicsRigidBody body points]
+  (let [p (.getPhysicsLocation body (Vector3f.))
+        q (.getPhysicsRotation body (Quaternion.))
+        turn (Math/toDegrees (.toAngleAxis q (Vector3f.)))]
+    [(apply min (for [[x y z] points] (.y (.add (.mult q (Vector3f. (float x) (float y) (float z))) p))))
+     (min turn (- 360.0 turn))]))
+
+(defn- settle
+  "[where the lowest vertex of `tris` is, as a fraction of their height;
+  how far the segment turned, in degrees] after the segment of shape
+  `shape` (data) is dropped unturned from 5% of that height above a
+  floor and left for 3 s (see `dropped`)."
+  [shape tris]
+  (let [ys (map second (apply concat tris))
+        low (double (apply min ys))
+        height (- (double (apply max ys)) low)
+        {:keys [body]} (dropped shape (Quaternion.) (+ (- low) (* 0.05 height)))
+        [lowest turn] (lowest-and-turn body (apply concat tris))]
+    [(/ lowest height) turn]))
 
 (defn- drop-onto-floor
   "Where the lowest vertex of `tris` is, as a fraction of their height,
@@ -374,32 +392,15 @@
 (defn- drop-square
   "[how high the lowest corner of a flat square `w` wide lies, how far
   it turned in degrees, its fastest in the last second] after it is
-  dropped tilted by `tilt` about X and left for 3 s."
+  dropped tilted by `tilt` about X and left for 3 s (see `dropped`)."
   [w tilt]
   (let [h (/ (double w) 2)
         pts [[(- h) 0 (- h)] [h 0 (- h)] [h 0 h] [(- h) 0 h]]
-        space (doto (PhysicsSpace. (Vector3f. -1000 -1000 -1000) (Vector3f. 1000 1000 1000)
-                                   PhysicsSpace$BroadphaseType/DBVT)
-                engine/configure-space!)
-        floor (PhysicsRigidBody. ^CollisionShape (util/locked-shape #(BoxCollisionShape. (Vector3f. 10 0.5 10)))
-                                 (float 0))
-        body (PhysicsRigidBody. (shapes/collision-shape {:type :hull :points pts}) (float 1))]
-    (.setPhysicsLocation floor (Vector3f. 0 -0.5 0))
-    (.setPhysicsRotation body (doto (Quaternion.) (.fromAngles (float tilt) 0 0)))
-    (.setPhysicsLocation body (Vector3f. 0 (float (+ (* h (Math/sin tilt)) (* 0.05 w))) 0))
-    (.addCollisionObject space floor)
-    (.addCollisionObject space body)
-    (is (= 2 (world/step-thin-bodies! space)))
-    (let [speeds (vec (for [_ (range 180)]
-                        (do (.update space (float (/ 1 60.0)))
-                            (let [[a b c] (engine/linear-velocity (engine/rigid-body body))]
-                              (Math/sqrt (+ (* a a) (* b b) (* c c)))))))
-          p (.getPhysicsLocation body (Vector3f.))
-          q (.getPhysicsRotation body (Quaternion.))
-          turn (Math/toDegrees (.toAngleAxis q (Vector3f.)))]
-      [(apply min (for [[x y z] pts] (.y (.add (.mult q (Vector3f. (float x) (float y) (float z))) p))))
-       (min turn (- 360.0 turn))
-       (apply max (subvec speeds 120))])))
+        {:keys [body substeps speeds]} (dropped {:type :hull :points pts}
+                                                (doto (Quaternion.) (.fromAngles (float tilt) 0 0))
+                                                (+ (* h (Math/sin tilt)) (* 0.05 w)))]
+    (is (= 2 substeps))
+    (conj (lowest-and-turn body pts) (apply max (subvec speeds 120)))))
 
 (deftest a-flat-part-rests-on-its-plate
   (is (close? (engine/thickness (shapes/collision-shape {:type :hull :points [[-0.1 0 -0.1] [0.1 0 -0.1]
