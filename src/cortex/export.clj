@@ -28,11 +28,26 @@
 
 (set! *warn-on-reflection* true)
 
+(defn- with-bullet-moments
+  "`plan` with each segment massed by Bullet's approximation that has no
+  :moments of its own (a plan written by hand) given those the engine
+  gives its shape, cortex.segment/bullet-moments, as build! would: so
+  that its muscles and its inertia are the built body's."
+  [plan]
+  (update plan :segments
+          (fn [ss]
+            (mapv (fn [{:keys [inertia mass shape] :as s}]
+                    (if (and (= :box (:source inertia)) (nil? (:moments inertia)) shape mass)
+                      (assoc-in s [:inertia :moments] (segment/bullet-moments mass shape))
+                      s))
+                  ss))))
+
 (defn plan-of
-  "What the writers write for `x`: a plan (see cortex.plan) as it is; a
-  creature Node, the plan its body was built from, or, before it has a
-  body, its plan now. An ex-info names a segment the plan holds no body
-  for (a plan drawn up after body!, whose segments are only kept)."
+  "What the writers write for `x`: a plan (see cortex.plan), its missing
+  moments filled in (see `with-bullet-moments`); a creature Node, the
+  plan its body was built from, or, before it has a body, its plan now.
+  An ex-info names a segment the plan holds no body for (a plan drawn up
+  after body!, whose segments are only kept)."
   [x]
   (let [p (if (instance? Node x)
             (or (:plan (segment/record x)) (plan/plan x))
@@ -44,7 +59,7 @@
                            " creature itself, (cortex.export/mjcf creature), or a plan drawn up"
                            " before body!")
                       {:creature (:creature p) :segment id})))
-    (cond-> p (model/physics-tab? p) model/check-tab!)))
+    (if (model/physics-tab? p) (model/check-tab! p) (with-bullet-moments p))))
 
 (defn ^:api urdf
   "The URDF document (a string) of `x`, a plan or a creature (see
@@ -66,9 +81,11 @@
   "How each joint of `plan` is written: cortex.export.model/joint-dofs."
   model/joint-dofs)
 
-(def ^{:api true :arglists '([plan])} muscles
-  "Each joint's muscle from the plan: cortex.export.model/muscles."
-  model/muscles)
+(defn ^:api muscles
+  "Each joint's muscle from `x`, a plan or a creature (see `plan-of`):
+  cortex.export.model/muscles."
+  [x]
+  (model/muscles (plan-of x)))
 
 (defn- wxyz [m] (let [[x y z w] (matrix->quat m)] [w x y z]))
 

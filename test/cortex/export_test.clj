@@ -1105,6 +1105,25 @@
       (check-urdf p urdf))
     (skip "cortex.export-test/a-flat-segment-is-written-as-a-plate, in MuJoCo")))
 
+(deftest a-plan-written-without-moments-exports-as-built
+  (doseq [f ["fish" "flat-hexagon-paddle"]
+          :let [c (util/load-blender-model (str "test/fixtures/flat-strangers/" f ".blend"))
+                p (plan/plan c)
+                by-hand (update p :segments
+                                (partial mapv #(cond-> % (= :box (get-in % [:inertia :source]))
+                                                 (update :inertia dissoc :moments))))
+                _ (body/body! c)
+                mine (ex/muscles by-hand)]]
+    (testing f
+      (is (some #(= :box (get-in % [:inertia :source])) (:segments p))
+          "a segment massed by Bullet's approximation")
+      (doseq [[n {:keys [strength kp kd]}] (muscle/muscles c)]
+        (is (close? (:strength (mine n)) strength 1e-4) n)
+        (is (close? (:kp (mine n)) kp 1e-4) (str n " stiffness"))
+        (is (close? (:kd (mine n)) kd 1e-4) (str n " damping")))
+      (is (= (ex/mjcf p) (ex/mjcf by-hand)))
+      (is (= (ex/urdf p) (ex/urdf by-hand))))))
+
 (deftest a-walker-on-flat-feet-drops-as-in-mujoco
   (if-let [py (python)]
     (let [c (util/load-blender-model "test/fixtures/flat-strangers/leaf-walker.blend")
