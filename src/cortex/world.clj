@@ -22,6 +22,7 @@
            (com.jme3.input KeyInput MouseInput)
            (com.jme3.input.controls ActionListener KeyTrigger
                                     MouseButtonTrigger Trigger)
+           (com.jme3.material TechniqueDef$LightMode)
            (com.jme3.math ColorRGBA Vector3f)
            (com.jme3.scene Node Spatial)
            (com.jme3.system AppSettings JmeContext$Type)
@@ -272,6 +273,10 @@
                   physics-state (doto (BulletAppState.)
                                   (.setThreadingType BulletAppState$ThreadingType/SEQUENTIAL))]
               (.attach (.getStateManager this) physics-state)
+              ;; single-pass lighting, as the eyes have it: its shader
+              ;; lights the back of a face drawn on both sides (an open
+              ;; mesh, see the Blender chapter) by the face's back
+              (.setPreferredLightMode (.getRenderManager this) TechniqueDef$LightMode/SinglePass)
               ;; the engine's settings that cortex makes the same (org/engine.org)
               (some-> (.getPhysicsSpace physics-state) engine/configure-space! projection/install!)
               (swap! state assoc ::physics physics-state)

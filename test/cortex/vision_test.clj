@@ -15,11 +15,13 @@
             [cortex.sim :as sim]
             [cortex.util :as util]
             [cortex.vision :as vision])
-  (:import (com.jme3.bullet.control RigidBodyControl)
+  (:import (com.jme3.bounding BoundingBox)
+           (com.jme3.bullet.control RigidBodyControl)
+           (com.jme3.material RenderState$FaceCullMode)
            (java.awt.image BufferedImage)
            (javax.imageio ImageIO)
            (com.jme3.math ColorRGBA Quaternion Vector3f)
-           (com.jme3.scene Node Spatial)
+           (com.jme3.scene Geometry Node Spatial)
            (java.util Arrays)))
 
 (set! *warn-on-reflection* true)
@@ -146,6 +148,45 @@
               (is (<= (Math/abs (- (double (first cols)) (double lo))) 1.0) (str degrees " degrees: " (first cols) " vs " lo))
               (is (<= (Math/abs (- (double (inc (last cols))) (double hi))) 1.0) (str degrees " degrees: " (inc (last cols)) " vs " hi))))))
       (finally (sim/destroy! s)))))
+
+(deftest an-eye-sees-both-sides-of-a-plane
+  (let [^Geometry blade (body/segment (util/load-blender-model
+                                       "test/fixtures/flat-strangers/flat-hexagon-paddle.blend")
+                                      "paddle")
+        ^BoundingBox bound (.getBound (.getMesh blade))
+        ext (.getExtent bound nil)
+        ;; the blade's normal, in its own frame: its thinnest axis
+        normal (apply min-key #(Math/abs (.dot ext ^Vector3f %))
+                      [Vector3f/UNIT_X Vector3f/UNIT_Y Vector3f/UNIT_Z])
+        seen (fn [^Vector3f facing]
+               (let [[s cube] (seer-sim true)
+                     axis (.cross ^Vector3f normal facing)
+                     ^Quaternion turn (if (< (.length axis) 1e-6)
+                            (if (pos? (.dot ^Vector3f normal facing))
+                              (Quaternion.)
+                              (doto (Quaternion.) (.fromAngleAxis (float Math/PI) Vector3f/UNIT_X)))
+                            (doto (Quaternion.) (.fromAngleAxis (float (.angleBetween ^Vector3f normal facing))
+                                                                (.normalize axis))))
+                     plane (doto (Geometry. "blade" (.getMesh blade))
+                             (.setMaterial (.getMaterial blade))
+                             (.setLocalRotation turn)
+                             (.setLocalTranslation (.subtract (Vector3f. 0 0 3.55)
+                                                              (.mult turn (.getCenter bound)))))]
+                 (try
+                   (.removeFromParent ^Spatial cube)
+                   (.attachChild ^Node (:root s) plane)
+                   (pixel (get-in (sim/step! s) [:eyes "front-eye"]) 32 24)
+                   (finally (sim/destroy! s)))))
+        toward (seen (Vector3f. 0 0 -1))
+        away (seen (Vector3f. 0 0 1))]
+    (is (not= [140 178 230] toward) "the blade's face towards the eye is seen")
+    (is (not= [140 178 230] away) "its back, towards the eye, is seen")
+    (is (= toward away) "both sides are lit alike")
+    (is (= RenderState$FaceCullMode/Back
+           (-> (util/load-blender-model "test/fixtures/flat-strangers/flat-hexagon-paddle.blend")
+               (body/segment "handle") ^Geometry (identity) .getMaterial .getAdditionalRenderState
+               .getFaceCullMode))
+        "a closed mesh (the handle) is drawn on its outside only")))
 
 (deftest segmentation-names-what-is-seen
   (let [[s] (seer-sim {:all {:segmentation true}})]

@@ -15,7 +15,7 @@
             [cortex.util :as util :refer [vec3]])
   (:import [com.jme3.scene Node Geometry Mesh VertexBuffer$Type Spatial]
            [com.jme3.math Vector3f Quaternion Matrix3f ColorRGBA Transform]
-           [com.jme3.material Material]
+           [com.jme3.material Material RenderState$FaceCullMode]
            [com.jme3.util BufferUtils]
            [com.jme3.asset AssetManager]))
 
@@ -228,14 +228,30 @@
                  [(- (* d h) (* e g)) (- (* b g) (* a h)) (- (* a e) (* b d))]]]
         (m/transpose (mapv (fn [row] (mapv #(/ % det) row)) inv))))))
 
+(defn- open?
+  "Has mesh data `md` an edge that only one face uses (a plane, a fin, a
+  bowl): a surface whose back can be seen?"
+  [{:keys [^ints starts ^ints counts ^ints corners]}]
+  (let [uses (java.util.HashMap.)]
+    (dotimes [f (alength counts)]
+      (let [s (aget starts f) n (aget counts f)]
+        (dotimes [k n]
+          (let [a (aget corners (+ s k)) b (aget corners (+ s (mod (inc k) n)))
+                e (+ (* (long (min a b)) 4294967296) (long (max a b)))]
+            (.merge uses e 1 (reify java.util.function.BiFunction
+                               (apply [_ x y] (+ (long x) (long y)))))))))
+    (boolean (some #(== 1 (long %)) (.values uses)))))
+
 (defn- geometries
   "The Geometries of a mesh object: one per material slot its faces use
   (slot numbers clamped to the slots there are, as Blender does), in
   slot order, named object name + 1, 2, ... as jme3-blender names them.
   Vertices are in the object's frame, Y up, with `residual` (if any)
-  baked in so that they land where Blender puts them."
+  baked in so that they land where Blender puts them. An open mesh
+  (see `open?`) is drawn on both sides, as Blender draws it."
   [am {:keys [name mesh materials color]} residual]
   (let [nslots (count materials)
+        both-sides? (open? mesh)
         ^ints mats (:mats mesh)
         slot-of (fn [f] (max 0 (min (dec (max 1 nslots)) (aget mats (int f)))))
         by-slot (group-by slot-of (range (alength mats)))
@@ -246,7 +262,10 @@
             (let [g (Geometry. (str name (inc (long i)))
                                (jme-mesh (mesh-buffers mesh (by-slot slot) pm nm)))]
               (when am
-                (.setMaterial g (material am (or (:color (get materials slot)) color))))
+                (let [mat (material am (or (:color (get materials slot)) color))]
+                  (when both-sides?
+                    (.setFaceCullMode (.getAdditionalRenderState mat) RenderState$FaceCullMode/Off))
+                  (.setMaterial g mat)))
               g))
           (sort (keys by-slot))))))
 
