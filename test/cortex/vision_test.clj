@@ -347,7 +347,7 @@
     (.attachChild ^Node (:root s) cube)
     (try
       (let [near (get-in (sim/step! s) [:eyes "ortho"])
-            _ (.setLocalTranslation cube 0 0 6.55)
+            _ (.setLocalTranslation ^Spatial cube 0 0 6.55)
             far (get-in (sim/step! s) [:eyes "ortho"])]
         (is (= 16 (count (red-columns near 32)) (count (red-columns far 32)))
             "0.5 of 2 units across is 16 of 64 pixels, near or far")

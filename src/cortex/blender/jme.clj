@@ -232,15 +232,24 @@
   "Has mesh data `md` an edge that only one face uses (a plane, a fin, a
   bowl): a surface whose back can be seen?"
   [{:keys [^ints starts ^ints counts ^ints corners]}]
-  (let [uses (java.util.HashMap.)]
-    (dotimes [f (alength counts)]
-      (let [s (aget starts f) n (aget counts f)]
-        (dotimes [k n]
-          (let [a (aget corners (+ s k)) b (aget corners (+ s (mod (inc k) n)))
-                e (+ (* (long (min a b)) 4294967296) (long (max a b)))]
-            (.merge uses e 1 (reify java.util.function.BiFunction
-                               (apply [_ x y] (+ (long x) (long y)))))))))
-    (boolean (some #(== 1 (long %)) (.values uses)))))
+  ;; every face's edges as longs (lower vertex, higher vertex), sorted:
+  ;; an edge one face uses is a run of one
+  (let [total (long (loop [f 0 t 0] (if (< f (alength counts)) (recur (inc f) (+ t (aget counts f))) t)))
+        edges (long-array total)]
+    (loop [f 0 i 0]
+      (when (< f (alength counts))
+        (let [s (aget starts f) n (aget counts f)]
+          (dotimes [k n]
+            (let [a (aget corners (+ s k)) b (aget corners (+ s (rem (inc k) n)))]
+              (aset edges (+ i k) (+ (* (long (min a b)) 4294967296) (long (max a b))))))
+          (recur (inc f) (+ i n)))))
+    (java.util.Arrays/sort edges)
+    (loop [i 0]
+      (if (>= i total)
+        false
+        (let [j (long (loop [j (inc i)]
+                        (if (and (< j total) (== (aget edges j) (aget edges i))) (recur (inc j)) j)))]
+          (if (== j (inc i)) true (recur j)))))))
 
 (defn- geometries
   "The Geometries of a mesh object: one per material slot its faces use
