@@ -2,8 +2,8 @@
 ;; of friction 1, or given 10 rad/s about their axis: the fastest spin in 10 s, the fastest in the last
 ;; second, and the lowest centre as a fraction of r.
 ;; bin/lein [with-profile +native] run -m clojure.main notebook/flat/lying-cylinder.clj
-;; env: RS radii ("0.03 0.1 0.3"), LEN (10), SHAPES of cyl (cortex.shapes' cylinder), prism16, prism32
-;; (hulls); SUBS substeps (1); PLANE=1 a plane for the floor; FW a floor box of that half width made as
+;; env: RS radii ("0.03 0.1 0.3"), LEN (10), SHAPES of cyl (cortex.shapes' cylinder), prism6, prism16, prism32
+;; (hulls), box (cortex.shapes' box, 2r square); SUBS substeps (1); PLANE=1 a plane for the floor; FW a floor box of that half width made as
 ;; cortex.shapes makes a box, or with FBOX=m a Bullet box of margin m (default: cortex.sim/floor);
 ;; ISO=k each inverse moment at most k times the smallest.
 (require '[cortex.engine :as engine] '[cortex.shapes :as shapes] '[cortex.sim :as sim])
@@ -28,6 +28,8 @@
         shape (case kind
                 "cyl" (shapes/collision-shape data)
                 "prism16" (doto (HullCollisionShape. (float-array (mapcat identity (shapes/prism-points data m 16)))) (.setMargin (float m)))
+                "prism6" (doto (HullCollisionShape. (float-array (mapcat identity (shapes/prism-points data m 6)))) (.setMargin (float m)))
+                "box" (shapes/collision-shape {:type :box :half-extents [(* (Double/parseDouble (env "LEN" "10")) r) r r]})
                 "prism32" (doto (HullCollisionShape. (float-array (mapcat identity (shapes/prism-points data m 32)))) (.setMargin (float m))))
         body (doto (PhysicsRigidBody. ^CollisionShape shape (float 0.5))
                (.setPhysicsLocation (Vector3f. 0 (float (* 1.001 r)) 0)) (.setFriction 0.5)
