@@ -306,25 +306,31 @@
   (a Quaternion) with its origin `y` above a floor and left for 3 s, in
   as many substeps as a simulation gives its thickness
   (cortex.world/step-thin-bodies!): {:body :substeps :speeds (its speed
-  after each step)}."
-  [shape ^Quaternion rot y]
-  (let [space (doto (PhysicsSpace. (Vector3f. -1000 -1000 -1000) (Vector3f. 1000 1000 1000)
-                                   PhysicsSpace$BroadphaseType/DBVT)
-                engine/configure-space!)
-        floor (PhysicsRigidBody. ^CollisionShape (util/locked-shape #(BoxCollisionShape. (Vector3f. 10 0.5 10)))
-                                 (float 0))
-        body (PhysicsRigidBody. (shapes/collision-shape shape) (float 1))]
-    (.setPhysicsLocation floor (Vector3f. 0 -0.5 0))
-    (.setPhysicsRotation body rot)
-    (.setPhysicsLocation body (Vector3f. 0 (float y) 0))
-    (.addCollisionObject space floor)
-    (.addCollisionObject space body)
-    (let [k (world/step-thin-bodies! space)]
-      {:body body :substeps k
-       :speeds (vec (for [_ (range 180)]
-                      (do (.update space (float (/ 1 60.0)))
-                          (let [[a b c] (engine/linear-velocity (engine/rigid-body body))]
-                            (Math/sqrt (+ (* a a) (* b b) (* c c)))))))})))
+  after each step) :turns (how fast it turns, rad/s, after each step)}.
+  `opts`: :seconds (3), :spin (a starting turn [x y z], rad/s) and
+  :angular-damping (none; a segment's is 0.5)."
+  ([shape rot y] (dropped shape rot y {}))
+  ([shape ^Quaternion rot y {:keys [seconds spin angular-damping] :or {seconds 3}}]
+   (let [space (doto (PhysicsSpace. (Vector3f. -1000 -1000 -1000) (Vector3f. 1000 1000 1000)
+                                    PhysicsSpace$BroadphaseType/DBVT)
+                 engine/configure-space!)
+         floor (PhysicsRigidBody. ^CollisionShape (util/locked-shape #(BoxCollisionShape. (Vector3f. 10 0.5 10)))
+                                  (float 0))
+         body (PhysicsRigidBody. (shapes/collision-shape shape) (float 1))
+         size (fn [[a b c]] (Math/sqrt (+ (* a a) (* b b) (* c c))))]
+     (.setPhysicsLocation floor (Vector3f. 0 -0.5 0))
+     (.setPhysicsRotation body rot)
+     (.setPhysicsLocation body (Vector3f. 0 (float y) 0))
+     (when angular-damping (.setDamping body 0 (float angular-damping)))
+     (when-let [[a b c] spin] (.setAngularVelocity body (Vector3f. (float a) (float b) (float c))))
+     (.addCollisionObject space floor)
+     (.addCollisionObject space body)
+     (let [k (world/step-thin-bodies! space)
+           after (vec (for [_ (range (Math/round (* 60.0 (double seconds))))]
+                        (do (.update space (float (/ 1 60.0)))
+                            (let [rb (engine/rigid-body body)]
+                              [(size (engine/linear-velocity rb)) (size (engine/angular-velocity rb))]))))]
+       {:body body :substeps k :speeds (mapv first after) :turns (mapv second after)}))))
 
 (defn- lowest-and-turn
   "[how high the lowest of `points` ([x y z]s in the body's frame) lies,
@@ -388,6 +394,31 @@
             (is (< a 3.0) (str "the lying 8-sided cylinder turned " a " degrees")))
         (println (format "the lying 8-sided cylinder at a hundredth on jBullet (left open): %.3f of its height, %.1f degrees"
                          (double r) (double a)))))))
+
+(defn- rolled
+  "[the fastest turn in the last of 10 s (rad/s), where the centre ends,
+  over the half-thickness `r`] of a lying rod of shape `shape`, its
+  centre placed `r` up, given `spin` rad/s about its length."
+  [shape r spin]
+  (let [{:keys [^PhysicsRigidBody body turns]}
+        (dropped shape (Quaternion.) (* 1.001 (double r))
+                 {:seconds 10 :spin [spin 0 0] :angular-damping 0.5})]
+    [(apply max (subvec turns 540)) (/ (.y (.getPhysicsLocation body (Vector3f.))) (double r))]))
+
+(deftest a-small-rod-with-flat-sides-rests
+  (let [r 0.03
+        cylinder {:type :cylinder :axis 0 :half-extents [0.3 r r]}
+        shapes {"box" {:type :box :half-extents [0.3 r r]}
+                "cylinder" cylinder
+                "six-sided prism" {:type :hull :points (shapes/prism-points cylinder 0.0 6)}}]
+    (doseq [[n shape] (sort shapes) spin [0.0 10.0]
+            :let [[turn y] (rolled shape r spin)]]
+      (println (format "a lying %s 0.06 across on %s, pushed to %.0f rad/s: %.2f rad/s in its tenth second, centre at %.2f of its half-thickness"
+                       n engine/label spin turn y))
+      (when (= "box" n)
+        (testing (str "the box pushed to " spin " rad/s")
+          (is (< turn 0.05) (str "still turning at " turn " rad/s"))
+          (is (< (Math/abs (- y 1.0)) 0.05) (str "centre at " y " of its half-thickness")))))))
 
 (defn- drop-square
   "[how high the lowest corner of a flat square `w` wide lies, how far
