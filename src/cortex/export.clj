@@ -37,7 +37,7 @@
   (update plan :segments
           (fn [ss]
             (mapv (fn [{:keys [inertia mass shape] :as s}]
-                    (if (and (= :box (:source inertia)) (nil? (:moments inertia)) shape mass)
+                    (if (and (= :box (:source inertia)) (nil? (:moments inertia)))
                       (assoc-in s [:inertia :moments] (segment/bullet-moments mass shape))
                       s))
                   ss))))
@@ -47,7 +47,8 @@
   moments filled in (see `with-bullet-moments`); a creature Node, the
   plan its body was built from, or, before it has a body, its plan now.
   An ex-info names a segment the plan holds no body for (a plan drawn up
-  after body!, whose segments are only kept)."
+  after body!, whose segments are only kept), or whose mass is not a
+  number of kilograms."
   [x]
   (let [p (if (instance? Node x)
             (or (:plan (segment/record x)) (plan/plan x))
@@ -59,6 +60,11 @@
                            " creature itself, (cortex.export/mjcf creature), or a plan drawn up"
                            " before body!")
                       {:creature (:creature p) :segment id})))
+    (doseq [{:keys [id mass]} (:segments p)
+            :when (not (and (number? mass) (<= 0.0 (double mass) Double/MAX_VALUE)))]
+      (throw (ex-info (str "segment " (pr-str id) " of " (:creature p) " has mass " (pr-str mass)
+                           " in this plan: give it a number of kilograms, 0 for a static segment")
+                      {:creature (:creature p) :segment id :mass mass})))
     (if (model/physics-tab? p) (model/check-tab! p) (with-bullet-moments p))))
 
 (defn ^:api urdf

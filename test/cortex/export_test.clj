@@ -358,7 +358,13 @@
                           :shape {:type :hull :points [[0 0 0] [1 0 0] [2 0 0] [3 0 0]]}}]}]
     (is (re-find #"^segment \"rod\" of creature line.blend has no area: its 4 points lie on a line"
                  (str (refusal #(ex/mjcf line)))))
-    (is (= (refusal #(ex/mjcf line)) (refusal #(ex/urdf line)))))
+    (is (= (refusal #(ex/mjcf line)) (refusal #(ex/urdf line))))
+    (doseq [m ["heavy" -1.0 nil Double/NaN Double/POSITIVE_INFINITY]
+            :let [bad (assoc-in line [:segments 0 :mass] m)]]
+      (is (re-find #"^segment \"rod\" of line.blend has mass .* give it a number of kilograms"
+                   (str (refusal #(ex/mjcf bad))))
+          (pr-str m))
+      (is (= (refusal #(ex/mjcf bad)) (refusal #(ex/urdf bad)) (refusal #(ex/muscles bad))))))
   (let [empty-plan (plan/plan (body/body! (util/load-blender-model "test/fixtures/poses/scenes.blend")))]
     (is (= [] (:segments empty-plan)))
     (is (str/includes? (ex/mjcf empty-plan) "<worldbody/>") "MJCF takes a world with nothing in it")
