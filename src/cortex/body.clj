@@ -13,7 +13,8 @@
   add joint types), `joint-types`, `read-joint` (a joint description,
   read safely), `read-description` (any such property), `segments`,
   `mass`, `pivot`, `pivot-in-world`, `cone-engine-angles` (a cone's
-  angles as its engine reads them)."
+  angles as its engine reads them), `spring-fields` (a spring joint's
+  settings, its defaults filled in)."
   (:require [clojure.string :as str]
             [cortex.engine :as engine]
             [cortex.joint :as joint]
@@ -37,7 +38,7 @@
         overlap-warnings limit-warnings)
 (util/export-vars cortex.joint read-description read-joint ^:api joint-dispatch joint-types body-frame
         common-joint-keys joint-keys check-keys jbullet-hinge-limits cone-engine-angles
-        pivot pivot-in-world joint-gap connect)
+        spring-fields pivot pivot-in-world joint-gap connect)
 
 (defn ^:api physical!
   "Make every segment of `creature` solid: a rigid body with a convex

@@ -330,9 +330,10 @@
                         {:type :cone :turn (doto (Quaternion.) (.fromRotationMatrix turn))
                          :limits [t y z]})))))
 
-(defn- spring-fields
+(defn spring-fields
   "A spring description's {:stiffness :damping :limit-xz :limit-xy
-  :twist}, checked, the defaults filled in."
+  :twist}, checked, the defaults filled in: what the joint is built
+  from, and what the exporter writes (see the export chapter)."
   [constraints]
   (let [field (fn [k default]
                 (let [v (get constraints k default)]

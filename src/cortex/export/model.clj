@@ -90,9 +90,11 @@
 (defn cone-frame
   "[turn limits] of a cone of description `d`: the turn (a matrix,
   columns the engine's X, Y and Z in the joint's frame, jME's axes)
-  cortex's engine limits it in, and its three limits there."
+  cortex's engine limits it in, and its three limits there; a spring
+  joint's description is read with its defaults (cortex.body/spring-fields)."
   [d]
-  (let [e 1e-3
+  (let [d (if (= :spring (:type d)) (merge d (body/spring-fields d)) d)
+        e 1e-3
         angles (fn [axis] (first (body/cone-engine-angles
                                   d (.fromAngleAxis (Quaternion.) (float e)
                                                     (Vector3f. (float (axis 0)) (float (axis 1))
@@ -115,29 +117,35 @@
 (defn- dofs
   "The one-axis degrees of freedom of plan joint `j` in the tree, the
   child's side first: [{:name :axis (Z-up world) :range [lo hi] :frame-axis
-  k}], in the order the child hangs from them; for a point joint,
-  :ball."
+  k}], in the order the child hangs from them, a spring joint's each
+  with its :stiffness and :damping; for a point joint, :ball."
   [{:keys [name type description rotation]} flipped?]
-  (let [E (quat->matrix rotation)]
+  (let [E (quat->matrix rotation)
+        cone (fn [d]
+               (let [[turn limits] (cone-frame d)
+                     G (mm E turn)
+                     order (if flipped? [0 1 2] [2 1 0])]
+                 (vec (for [k order
+                            :let [l (nth limits k)
+                                  col (mapv #(nth % k) G)]]
+                        {:name (str name "/" (nth ["x" "y" "z"] k))
+                         :axis (z-up col) :range [(- l) l] :jme-axis col :engine-axis k
+                         ;; which of the joint frame's own axes this is
+                         :frame-axis (first (keep-indexed #(when-not (zero? (double %2)) %1)
+                                                          (mapv #(nth % k) turn)))}))))]
     (case type
       :hinge (let [[lo hi] (:limit description)
                    [lo hi] (if flipped? [(- (double hi)) (- (double lo))] [(double lo) (double hi)])
                    a (blender->jme (axis-of description))]
                [{:name name :axis (z-up (mv E a)) :range [lo hi] :jme-axis (mv E a)}])
-      :cone (let [[turn limits] (cone-frame description)
-                  G (mm E turn)
-                  order (if flipped? [0 1 2] [2 1 0])]
-              (vec (for [k order
-                         :let [l (nth limits k)
-                               col (mapv #(nth % k) G)]]
-                     {:name (str name "/" (nth ["x" "y" "z"] k))
-                      :axis (z-up col) :range [(- l) l] :jme-axis col :engine-axis k
-                      ;; which of the joint frame's own axes this is
-                      :frame-axis (first (keep-indexed #(when-not (zero? (double %2)) %1)
-                                                       (mapv #(nth % k) turn)))})))
+      :cone (cone description)
+      :spring (let [{:keys [stiffness damping]} (body/spring-fields description)]
+                (mapv #(assoc % :stiffness stiffness :damping damping) (cone description)))
       :point [{:name name :ball true}]
-      (throw (ex-info (str "joint " (pr-str name) ": a " (clojure.core/name type)
-                           " joint cannot be exported yet")
+      (throw (ex-info (str "joint " (pr-str name) ": a " (clojure.core/name type) " joint (a type"
+                           " added through cortex.body/joint-dispatch) cannot be written: the"
+                           " exporters know :hinge, :cone, :spring and :point joints; describe it"
+                           " as one of those to export the creature")
                       {:joint name :type type})))))
 
 (def ^{:arglists '([plan])

@@ -99,7 +99,8 @@
          _ (when (next roots)
              (throw (ex-info (str "creature " (:creature plan) " is in " (count roots)
                                   " pieces (roots " (str/join ", " roots)
-                                  "); a URDF robot is one tree")
+                                  "); a URDF robot is one tree: join the pieces, or export MJCF,"
+                                  " which holds any number of free bodies")
                              {:roots roots})))
          all-dofs (if tab? (tab-plan-dofs plan t) (plan-dofs plan t))
          meshes (mesh-files plan)
@@ -139,7 +140,8 @@
                         (when (next ds)
                           [(str "joint " jn ": a " (name type) " joint, written as " (count ds)
                                 " one-axis joints through links of negligible mass (_" jn "/1, ...)"
-                                (when (= type :cone) ", in the order cortex's engine limits it"))])
+                                (when (#{:cone :spring} type) ", in the order cortex's engine limits it")
+                                (when (some :stiffness ds) "; its springs are lost: URDF has no joint spring"))])
                         (map tiny (butlast (rest chain)))
                         (for [[{:keys [name axis range continuous fixed slide?]} [p c]]
                               (map vector ds (partition 2 1 chain))
