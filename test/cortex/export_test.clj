@@ -2,6 +2,7 @@
 (ns cortex.export-test
   (:require [clojure.java.io :as io]
             [clojure.java.shell :as shell]
+            [clojure.set :as set]
             [clojure.string :as str]
             [clojure.test :refer [deftest is testing]]
             [cortex.body :as body]
@@ -1234,6 +1235,72 @@
       (is (< (double (get drop "rest_speed")) 0.1) "MuJoCo's walker comes to rest")
       (is (< (double (:rest-speed ours)) 0.1) "cortex's walker comes to rest"))
     (skip "cortex.export-test/a-walker-on-flat-feet-drops-as-in-mujoco")))
+
+(defn- fixture-files
+  "Every .blend file under test/fixtures, sorted."
+  []
+  (sort (for [^java.io.File f (file-seq (io/file "test/fixtures"))
+              :let [p (str f)]
+              :when (str/ends-with? p ".blend")]
+          p)))
+
+(defn- written
+  "Fixture file `f` planned and written into `dir` as `n`: {:plan :entry}
+  (the entry compile-only), with :urdf-refused e (or :urdf-error e)
+  where the plan is written as MJCF alone; or {:refused e} for what
+  cortex refuses to plan or write, or {:error e}."
+  [f n dir]
+  (let [attempt (fn [g] (try {:ok (g)}
+                             (catch clojure.lang.ExceptionInfo e {:refused e})
+                             (catch Exception e {:error e})))
+        {p :ok :as planned} (attempt #(plan/plan (util/load-blender-model f)))
+        mj (str (io/file dir (str n ".xml")))]
+    (if-not p
+      planned
+      (let [{both :ok :as urdf} (attempt #(manifest-entry n p dir))
+            {alone :ok :as mjcf} (when-not both (attempt #(do (ex/write! p mj nil)
+                                                              {:name n :mjcf mj :urdf nil})))]
+        (if-let [e (or both alone)]
+          (merge {:plan p :entry (-> e (dissoc :mjx_seconds :mjcf_inscribed :held)
+                                     (assoc :compile_only true))}
+                 (set/rename-keys (select-keys urdf [:refused :error])
+                                  {:refused :urdf-refused :error :urdf-error}))
+          mjcf)))))
+
+(defn- moving [plan]
+  (update plan :segments (fn [ss] (filterv #(pos? (double (:mass %))) ss))))
+
+(deftest every-fixture-that-plans-exports
+  (if-let [py (python)]
+    (let [dir (str (Files/createTempDirectory "cortex-every" (make-array FileAttribute 0)))
+          runs (vec (for [[i f] (map-indexed vector (fixture-files))]
+                      (assoc (written f (str "f" i) dir) :f f)))
+          out (filter :entry runs)]
+      (println (format "every fixture: %d files, %d exported (%d as URDF too), %d refused"
+                       (count runs) (count out) (count (filter (comp :urdf :entry) out))
+                       (count (filter :refused runs))))
+      (is (<= 60 (count out)) "fewer than 60 fixtures exported")
+      (doseq [{:keys [f error urdf-error refused urdf-refused]} runs]
+        (testing f
+          (is (nil? error) (str "not an ex-info: " error))
+          (is (nil? urdf-error) (str "not an ex-info: " urdf-error))
+          (doseq [^Exception e [refused urdf-refused] :when e]
+            (is (or (str/includes? (ex-message e) f) (re-find #"\"[^\"]+\"" (ex-message e)))
+                (ex-message e)))))
+      (when-let [result (check-export py dir (map :entry out))]
+        (doseq [{:keys [f plan entry]} out
+                :let [{:strs [mujoco bodies urdf]} (result (:name entry))]]
+          (testing f
+            (is (nil? (get mujoco "error")))
+            (is (empty? (get mujoco "warnings")))
+            (is (= (set (map :id (:segments plan))) (set (keys bodies))))
+            (doseq [{:keys [id mass]} (:segments plan)]
+              (is (close? (get-in bodies [id "mass"]) mass 1e-6) id))
+            (when-not (model/physics-tab? plan)
+              (check-bodies (moving plan) mujoco (select-keys bodies (map :id (:segments (moving plan))))))
+            (when (:urdf entry)
+              (check-urdf (moving plan) urdf))))))
+    (skip "cortex.export-test/every-fixture-that-plans-exports")))
 
 (def ^:private eye-turn
   "How the worm with eyes is turned for the camera check: 30 degrees
