@@ -53,7 +53,7 @@ OUT.json, by fixture name:
   z) against the world's at the end, 1 upright, 0 on its side.
 - "held" (where the fixture asks, "held": true): the same drop with
   actuation on and every control 0, so that each position servo holds
-  its joint at 0, the pose as built (a point joint's motors push nothing).
+  its joint at 0, the pose as built.
 - "held_inscribed" (where the fixture gives "mjcf_inscribed", the same
   creature written with :cone-strength :inscribed): its held drop.
 - "mjx" (where the fixture gives "mjx_seconds"): the held drop's first
@@ -62,6 +62,11 @@ OUT.json, by fixture name:
   chain is too long for XLA's fusion pass, which is then left out)},
   {"error": what mjx.put_model or the compiler said, or where MJX
   diverged, with "heights" until then}, or {"skipped": why}.
+- "random" (where the fixture gives "random_seconds"): the limp drop's
+  model with actuation on, every control drawn at random within its
+  ctrlrange every 1/60 s (a learner's first exploration), three seeds:
+  {"unlimited": actuators without a ctrlrange, "runs": [{"warnings",
+  "fastest" (the fastest joint speed, rad/s or m/s)}]}.
 - "urdf": check_urdf's exit code and output; PyBullet's link masses; and the
   same drop in PyBullet (1/60 s step in four substeps, floor friction 1:
   Bullet multiplies).
@@ -202,6 +207,9 @@ def drives(m, fixture):
             for end, target in (("low", lo - 1.0), ("high", hi + 1.0)):
                 d = mujoco.MjData(m)
                 m.opt.gravity[:] = 0
+                # told past its range, beyond its controls' range, so
+                # that the servo pushes at the muscle's strength
+                m.actuator_ctrllimited[:] = 0
                 # the joint alone: no segment may stop another on the way
                 m.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_CONTACT
                 mujoco.mj_forward(m, d)
@@ -219,6 +227,33 @@ def drives(m, fixture):
                 out.append({"joint": j["name"], "dof": dof["joint"], "end": end,
                             "qpos": best[0], "angles": best[1]})
     return out
+
+
+def random_controls(path, seconds, seeds=3):
+    """Random controls within each actuator's ctrlrange, redrawn every
+    1/60 s for `seconds`, from the creature's pose as written (floor at
+    z = 0): MuJoCo's warnings and the fastest joint, per seed."""
+    m, _ = load_on_floor(path)
+    lo, hi = m.actuator_ctrlrange[:, 0], m.actuator_ctrlrange[:, 1]
+    every = max(1, int(round((1.0 / 60) / m.opt.timestep)))
+    runs = []
+    for seed in range(seeds):
+        d = mujoco.MjData(m)
+        rng = np.random.default_rng(seed)
+        fastest = 0.0
+        for i in range(int(round(seconds / m.opt.timestep))):
+            if i % every == 0:
+                d.ctrl[:] = rng.uniform(lo, hi)
+            mujoco.mj_step(m, d)
+            free = [int(m.jnt_dofadr[j]) + k for j in range(m.njnt)
+                    if m.jnt_type[j] != mujoco.mjtJoint.mjJNT_FREE
+                    for k in range(3 if m.jnt_type[j] == mujoco.mjtJoint.mjJNT_BALL else 1)]
+            if free:
+                fastest = max(fastest, float(np.abs(d.qvel[free]).max()))
+        runs.append({"warnings": sim_warnings(d), "fastest": fastest})
+    return {"unlimited": [m.actuator(a).name for a in range(m.nu)
+                          if not m.actuator_ctrllimited[a]],
+            "runs": runs}
 
 
 def sim_warnings(d):
@@ -526,6 +561,8 @@ def main():
                 r["held_inscribed"] = mj_drop(f["mjcf_inscribed"], f["seconds"], held=True)
             if f.get("mjx_seconds"):
                 r["mjx"] = mjx_held(f["mjcf"], f["mjx_seconds"])
+            if f.get("random_seconds"):
+                r["random"] = random_controls(f["mjcf"], f["random_seconds"])
             if f.get("track"):
                 r["track"] = track(f["mjcf"], f["track"])
             if f.get("tab_limits"):

@@ -227,19 +227,24 @@
              :let [{:keys [strength kp kd]} (ms name)]
              {dof :name :keys [ball frame-axis]} (all-dofs name)]
          (if ball
-           ;; a ball joint's torque is in its body's frame: the joint
-           ;; frame's axes (Blender's X, Y, Z) there
-           (for [[axis b] [["x" [1 0 0]] ["y" [0 1 0]] ["z" [0 0 1]]]]
-             [:motor {:name (str "muscle/" dof "/" axis) :joint dof
-                      :gear (concat (local-vector (infos (child-of name))
-                                                  (z-up (mv (quat->matrix rotation) (blender->jme b))))
-                                    [0 0 0])
-                      :ctrlrange [(- (share strength)) (share strength)]}])
-           (let [f (if frame-axis (share strength) strength)]
+           ;; a ball joint's servo acts about an axis of its body's
+           ;; frame, the joint frame's (Blender's X, Y, Z) there; its
+           ;; length is the rotation vector's part along that axis
+           (for [[k axis b] [[0 "x" [1 0 0]] [1 "y" [0 1 0]] [2 "z" [0 0 1]]]]
+             [:position {:name (str "muscle/" dof "/" axis) :joint dof
+                         :gear (concat (local-vector (infos (child-of name))
+                                                     (z-up (mv (quat->matrix rotation) (blender->jme b))))
+                                       [0 0 0])
+                         :kp (nth kp k) :kv (nth kd k)
+                         :forcerange [(- (share strength)) (share strength)]
+                         :ctrlrange [(- Math/PI) Math/PI]}])
+           (let [f (if frame-axis (share strength) strength)
+                 d (first (filter #(= dof (:name %)) (all-dofs name)))]
              [:position {:name (str "muscle/" dof) :joint dof
                          :kp (if frame-axis (nth kp frame-axis) kp)
                          :kv (if frame-axis (nth kd frame-axis) kd)
-                         :forcerange [(- f) f]}])))]
+                         :forcerange [(- f) f]
+                         :ctrlrange (when-not (model/held-at d) (:range d))}])))]
       [:sensor
        (for [{:keys [name]} (:joints plan)
              {dof :name :keys [ball]} (all-dofs name)]

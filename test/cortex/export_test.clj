@@ -221,10 +221,10 @@
                                     [(str "muscle/" d) j]))
                 bounds (fn [opts]
                          (let [doc (ex/mjcf p opts)]
-                           (concat (for [a (elements "position" doc)]
-                                     [(joint-of (a "name")) (a "forcerange")])
-                                   (for [a (elements "motor" doc)]
-                                     [(joint-of (str/replace (a "name") #"/[xyz]$" "")) (a "ctrlrange")]))))]]
+                           (for [a (elements "position" doc)]
+                             ;; a point joint's three: muscle/joint/x, y, z
+                             [(or (joint-of (a "name")) (joint-of (str/replace (a "name") #"/[xyz]$" "")))
+                              (a "forcerange")])))]]
     (testing f
       (is (some #{:cone} (vals kind)) "the fixture has cones")
       (doseq [[opts scale] [[{} 1.0] [{:cone-strength :per-axis} 1.0]
@@ -700,12 +700,10 @@
     (apply max (map - hi lo))))
 
 (defn- held
-  "The actions that hold every hinge and cone of `plan` at 0, the pose
-  it was built in, as the exported servos hold it told 0; a point
-  joint, whose exported motors then push nothing, is left limp."
+  "The actions that hold every joint of `plan` at 0, the pose it was
+  built in, as the exported servos hold it told 0."
   [plan]
-  (into {} (for [{:keys [name type]} (:joints plan)
-                 :when (#{:hinge :cone} type)]
+  (into {} (for [{:keys [name type]} (:joints plan)]
              [name {:target (if (= type :hinge) 0.0 [0.0 0.0 0.0])}])))
 
 (defn- cortex-drop
@@ -751,7 +749,7 @@
     (ex/write! plan mj urdf)
     (ex/write! plan inscribed nil {:cone-strength :inscribed})
     {:name f :mjcf mj :mjcf_inscribed inscribed :urdf urdf :seconds seconds :held true
-     :mjx_seconds 1.0
+     :mjx_seconds 1.0 :random_seconds seconds
      :pairs (map :segments (:joints plan))
      :base {:link (:id root) :pos (geo/z-up (:position root))
             :quat (geo/matrix->quat (z-up-rotation (geo/quat->matrix (:rotation root))))}
@@ -895,8 +893,20 @@
   (doseq [{:keys [id mass]} (:segments plan)]
     (is (close? (get-in urdf ["masses" id]) mass 1e-6) id)))
 
+(defn- check-random
+  "MuJoCo took random controls within their ranges (`random` of
+  check_export.py, three runs) without a warning, and every actuator of
+  fixture `f` has a range."
+  [f {:strs [unlimited runs]}]
+  (println (format "%s, random controls in MuJoCo for %.0f s: fastest joint %s rad/s" f seconds
+                   (str/join ", " (map #(format "%.1f" (double (% "fastest"))) runs))))
+  (is (empty? unlimited) (str "actuators without a ctrlrange: " (pr-str unlimited)))
+  (is (= 3 (count runs)))
+  (doseq [{:strs [warnings]} runs]
+    (is (= {} warnings) (str "random controls: MuJoCo warned " (pr-str warnings)))))
+
 (defn- check-fixture
-  [f plan cortex cortex-held {:strs [mujoco bodies drives drop urdf mjx] mj-held "held"
+  [f plan cortex cortex-held {:strs [mujoco bodies drives drop urdf mjx random] mj-held "held"
                               mj-inscribed "held_inscribed"}]
   (testing f
     (check-bodies plan mujoco bodies)
@@ -926,6 +936,7 @@
       (when (and (settles-alike f) (not (limp-by-chance [engine/name f])))
         (is (< (:rest-speed cortex) 0.1) (str "cortex still moving at " (:rest-speed cortex))))
       (check-held f sz cortex-held mj-held mj-inscribed)
+      (check-random f random)
       (check-mjx f sz mjx mj-held)
       (check-urdf plan urdf))))
 
