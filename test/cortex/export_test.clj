@@ -1110,6 +1110,41 @@
           (is (str/includes? (slurp (:urdf entry)) "its springs are lost")))))
     (skip "cortex.export-test/a-spring-joint-is-mujoco-s-joint-spring")))
 
+(deftest the-export-is-a-gymnasium-environment
+  (if-let [py (python)]
+    (let [dir (io/file (str (Files/createTempDirectory "cortex-gym" (make-array FileAttribute 0))))
+          [_ p] (placed "quadruped")
+          _ (ex/write! p (str (io/file dir "quadruped.xml")) nil)
+          scene (io/file dir "scene.xml")
+          _ (spit scene (str "<mujoco>\n  <include file=\"quadruped.xml\"/>\n  <worldbody>\n"
+                             "    <geom name=\"floor\" type=\"plane\" size=\"0 0 1\"/>\n"
+                             "  </worldbody>\n</mujoco>\n"))
+          {:keys [exit out err]} (shell/sh py "scripts/export/gym_check.py" (str scene) "torso" "1000")]
+      (if (= 3 exit)
+        (println "SKIPPED cortex.export-test/the-export-is-a-gymnasium-environment:" (str/trim out))
+        (let [{:strs [observations actions low high steps warnings]}
+              ((requiring-resolve 'cortex.blender-test/read-json) out)
+              dofs (for [[_ {ds :dofs}] (sort-by key (ex/joint-dofs p)) d ds] d)
+              ;; the servos in the document's order: the plan's joints in turn
+              ranges (for [{:keys [name]} (:joints p)
+                           d (:dofs ((ex/joint-dofs p) name))]
+                       (if (:ball d) (repeat 3 [(- Math/PI) Math/PI]) [(:range d)]))
+              ranges (apply concat ranges)
+              balls (count (filter :ball dofs))
+              hinges (- (count dofs) balls)]
+          (is (zero? exit) err)
+          (println (format "the four-legged creature in Gymnasium's Ant-v5: %d observations, %d actions, %d steps, warnings %s"
+                           observations actions steps (pr-str warnings)))
+          (is (= (count ranges) actions) "an action per servo")
+          ;; qpos less the root's x and y, and qvel: a free joint 7 and
+          ;; 6, a hinge 1 and 1, a ball 4 and 3
+          (is (= (+ (- (+ 7 hinges (* 4 balls)) 2) (+ 6 hinges (* 3 balls))) observations))
+          (is (close? low (map first ranges) 1e-6))
+          (is (close? high (map second ranges) 1e-6))
+          (is (= 1000 steps))
+          (is (= {} warnings)))))
+    (skip "cortex.export-test/the-export-is-a-gymnasium-environment")))
+
 (def ^:private stranger-files
   "The strangers' creatures exported at every size they were saved at."
   (vec (for [n ["worm-eye" "hand" "humanoid"] k ["" "-0.01" "-100"]]
