@@ -1283,12 +1283,15 @@
     (skip "cortex.export-test/a-walker-on-flat-feet-drops-as-in-mujoco")))
 
 (defn- fixture-files
-  "Every .blend file under test/fixtures, sorted."
+  "Every .blend file under test/fixtures, sorted, and then the shared
+  corpus's (cortex.blender-test/corpus-files; none, with a message,
+  where it is missing)."
   []
-  (sort (for [^java.io.File f (file-seq (io/file "test/fixtures"))
-              :let [p (str f)]
-              :when (str/ends-with? p ".blend")]
-          p)))
+  (concat (sort (for [^java.io.File f (file-seq (io/file "test/fixtures"))
+                      :let [p (str f)]
+                      :when (str/ends-with? p ".blend")]
+                  p))
+          (map str ((requiring-resolve 'cortex.blender-test/corpus-files)))))
 
 (defn- written
   "Fixture file `f` planned and written into `dir` as `n`: {:plan :entry}
