@@ -236,6 +236,10 @@ def random_controls(path, seconds, seeds=3):
     m, _ = load_on_floor(path)
     lo, hi = m.actuator_ctrlrange[:, 0], m.actuator_ctrlrange[:, 1]
     every = max(1, int(round((1.0 / 60) / m.opt.timestep)))
+    # the joints' own speeds: every dof but a free joint's
+    joints = [int(m.jnt_dofadr[j]) + k for j in range(m.njnt)
+            if m.jnt_type[j] != mujoco.mjtJoint.mjJNT_FREE
+            for k in range(3 if m.jnt_type[j] == mujoco.mjtJoint.mjJNT_BALL else 1)]
     runs = []
     for seed in range(seeds):
         d = mujoco.MjData(m)
@@ -245,11 +249,8 @@ def random_controls(path, seconds, seeds=3):
             if i % every == 0:
                 d.ctrl[:] = rng.uniform(lo, hi)
             mujoco.mj_step(m, d)
-            free = [int(m.jnt_dofadr[j]) + k for j in range(m.njnt)
-                    if m.jnt_type[j] != mujoco.mjtJoint.mjJNT_FREE
-                    for k in range(3 if m.jnt_type[j] == mujoco.mjtJoint.mjJNT_BALL else 1)]
-            if free:
-                fastest = max(fastest, float(np.abs(d.qvel[free]).max()))
+            if joints:
+                fastest = max(fastest, float(np.abs(d.qvel[joints]).max()))
         runs.append({"warnings": sim_warnings(d), "fastest": fastest})
     return {"unlimited": [m.actuator(a).name for a in range(m.nu)
                           if not m.actuator_ctrllimited[a]],

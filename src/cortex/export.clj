@@ -225,7 +225,7 @@
       [:actuator
        (for [{:keys [name rotation]} (:joints plan)
              :let [{:keys [strength kp kd]} (ms name)]
-             {dof :name :keys [ball frame-axis]} (all-dofs name)]
+             {dof :name :keys [ball frame-axis] :as d} (all-dofs name)]
          (if ball
            ;; a ball joint's servo acts about an axis of its body's
            ;; frame, the joint frame's (Blender's X, Y, Z) there; its
@@ -238,8 +238,7 @@
                          :kp (nth kp k) :kv (nth kd k)
                          :forcerange [(- (share strength)) (share strength)]
                          :ctrlrange [(- Math/PI) Math/PI]}])
-           (let [f (if frame-axis (share strength) strength)
-                 d (first (filter #(= dof (:name %)) (all-dofs name)))]
+           (let [f (if frame-axis (share strength) strength)]
              [:position {:name (str "muscle/" dof) :joint dof
                          :kp (if frame-axis (nth kp frame-axis) kp)
                          :kv (if frame-axis (nth kd frame-axis) kd)
