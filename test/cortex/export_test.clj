@@ -1124,12 +1124,11 @@
         (println "SKIPPED cortex.export-test/the-export-is-a-gymnasium-environment:" (str/trim out))
         (let [{:strs [observations actions low high steps warnings]}
               ((requiring-resolve 'cortex.blender-test/read-json) out)
-              dofs (for [[_ {ds :dofs}] (sort-by key (ex/joint-dofs p)) d ds] d)
-              ;; the servos in the document's order: the plan's joints in turn
-              ranges (for [{:keys [name]} (:joints p)
-                           d (:dofs ((ex/joint-dofs p) name))]
-                       (if (:ball d) (repeat 3 [(- Math/PI) Math/PI]) [(:range d)]))
-              ranges (apply concat ranges)
+              jd (ex/joint-dofs p)
+              ;; in the document's order: the plan's joints in turn
+              dofs (for [{:keys [name]} (:joints p) d (:dofs (jd name))] d)
+              ;; a servo's range; a ball's three servos, pi each way
+              ranges (mapcat #(if (:ball %) (repeat 3 [(- Math/PI) Math/PI]) [(:range %)]) dofs)
               balls (count (filter :ball dofs))
               hinges (- (count dofs) balls)]
           (is (zero? exit) err)
