@@ -88,36 +88,41 @@
   "What acting on the joint of proprioception sensor `sensor` needs:
   the sensor with :strength, :kp, :kd and :inertia; for a cone or point
   joint :kp, :kd and :inertia are [x y z], one per axis of the joint's
-  frame in Blender's axes."
-  [{:keys [type axis frame-a frame-b rb-a rb-b record] :as sensor}]
-  (let [^PhysicsJoint j (:physics-joint record)
-        [pa pb] (map v3 (engine/pivots j))
-        strength (given sensor :strength
-                        #(default-strength [[(mass-of rb-a) (Math/sqrt (p/dot pa pa))]
-                                            [(mass-of rb-b) (Math/sqrt (p/dot pb pb))]]))
-        ;; the moment about the pin, and each body's own about its centre
-        ;; of mass (what one step of jBullet's solver lets a torque see)
-        reduced (fn [ax pin-a pin-b]
-                  (let [ia (pivot-inertia rb-a (p/rotate frame-a ax) pin-a)
-                        ib (pivot-inertia rb-b (p/rotate frame-b ax) pin-b)]
-                    (/ 1.0 (+ (/ 1.0 ia) (/ 1.0 ib)))))
-        about (fn [ax pin-a pin-b]
-                (let [i (reduced ax pin-a pin-b)]
-                  (if (and (Double/isFinite i) (pos? i)) i 1.0)))
-        ;; [pin's moment, own moments] about one axis
-        sized (fn [ax] (let [i (about ax pa pb)]
-                         [i (default-gains strength i (min i (about ax [0 0 0] [0 0 0])))]))
-        given-or (fn [k gains] (given sensor k #(gains k)))]
-    (if (= type :hinge)
-      (let [[inertia gains] (sized axis)]
-        (assoc sensor :strength strength :inertia inertia
-               :kp (given-or :kp gains) :kd (given-or :kd gains)))
-      (let [axes (blender-order (map sized [[1 0 0] [0 1 0] [0 0 1]]))
-            ;; a gain in the description is the same on every axis
-            gain (fn [k] (let [g (given sensor k (constantly nil))]
-                           (if g [g g g] (mapv #(get (second %) k) axes))))]
-        (assoc sensor :strength strength :inertia (mapv first axes)
-               :kp (gain :kp) :kd (gain :kd))))))
+  frame in Blender's axes. `scale` (1 when not given) is how many times
+  the creature's size its bodies were built (a simulation's :scale):
+  lengths read from them count 1/scale, moments 1/scale^2, so that the
+  muscle is the creature's own."
+  ([sensor] (muscle sensor 1.0))
+  ([{:keys [type axis frame-a frame-b rb-a rb-b record] :as sensor} scale]
+   (let [^PhysicsJoint j (:physics-joint record)
+         sc (double scale)
+         [pa pb] (map v3 (engine/pivots j))
+         strength (given sensor :strength
+                         #(default-strength [[(mass-of rb-a) (/ (Math/sqrt (p/dot pa pa)) sc)]
+                                             [(mass-of rb-b) (/ (Math/sqrt (p/dot pb pb)) sc)]]))
+         ;; the moment about the pin, and each body's own about its centre
+         ;; of mass (what one step of jBullet's solver lets a torque see)
+         reduced (fn [ax pin-a pin-b]
+                   (let [ia (pivot-inertia rb-a (p/rotate frame-a ax) pin-a)
+                         ib (pivot-inertia rb-b (p/rotate frame-b ax) pin-b)]
+                     (/ (/ 1.0 (+ (/ 1.0 ia) (/ 1.0 ib))) (* sc sc))))
+         about (fn [ax pin-a pin-b]
+                 (let [i (reduced ax pin-a pin-b)]
+                   (if (and (Double/isFinite i) (pos? i)) i 1.0)))
+         ;; [pin's moment, own moments] about one axis
+         sized (fn [ax] (let [i (about ax pa pb)]
+                          [i (default-gains strength i (min i (about ax [0 0 0] [0 0 0])))]))
+         given-or (fn [k gains] (given sensor k #(gains k)))]
+     (if (= type :hinge)
+       (let [[inertia gains] (sized axis)]
+         (assoc sensor :strength strength :inertia inertia
+                :kp (given-or :kp gains) :kd (given-or :kd gains)))
+       (let [axes (blender-order (map sized [[1 0 0] [0 1 0] [0 0 1]]))
+             ;; a gain in the description is the same on every axis
+             gain (fn [k] (let [g (given sensor k (constantly nil))]
+                            (if g [g g g] (mapv #(get (second %) k) axes))))]
+         (assoc sensor :strength strength :inertia (mapv first axes)
+                :kp (gain :kp) :kd (gain :kd)))))))
 
 (defn ^:api muscles
   "The muscles of `creature` (built by cortex.body/body!), by joint name."
@@ -230,11 +235,16 @@
   (engine/apply-torques! rb-a rb-b torque))
 
 (defn apply-efforts!
-  "Apply `efforts` (from `efforts`) at the joints of `muscles`."
-  [muscles efforts]
-  (doseq [[n e] efforts
-          :let [m (muscles n)]]
-    (apply-torque! m (world-torque m e))))
+  "Apply `efforts` (from `efforts`) at the joints of `muscles`; on bodies
+  built `scale` times the creature's size (see `muscle`), each torque
+  times scale^2, the same turn in the larger world."
+  ([muscles efforts] (apply-efforts! muscles efforts 1.0))
+  ([muscles efforts scale]
+   (let [k2 (* (double scale) (double scale))]
+     (doseq [[n e] efforts
+             :let [m (muscles n)
+                   t (world-torque m e)]]
+       (apply-torque! m (if (== 1.0 k2) t (mapv #(* k2 (double %)) t)))))))
 
 (defn ^:api actuate!
   "Apply `actions` (see the namespace doc) at the joints of `creature`,

@@ -13,7 +13,6 @@
   spec's keys and what is measured."
   (:require [clojure.java.io :as io]
             [clojure.string :as str]
-            [cortex.body :as body]
             [cortex.engine :as engine]
             [cortex.proprioception :as p]
             [cortex.sim :as sim]
@@ -195,7 +194,7 @@
   built, over its floor. To watch a rollout, show it with sim/world and
   `controller`."
   [{:keys [creature seed start floor observe solver]}]
-  (let [c (doto ^Node (blender/load-blender-model creature) (place! seed start) (body/body!))]
+  (let [c (doto ^Node (blender/load-blender-model creature) (place! seed start))]
     (sim/simulation c (cond-> {:floor floor :observe (into #{:joints :segments} observe)}
                         solver (assoc :solver solver)))))
 

@@ -23,10 +23,12 @@
   (:import            (com.jme3.app SimpleApplication)
            (com.jme3.bullet PhysicsSpace PhysicsSpace$BroadphaseType)
            (com.jme3.bullet.control RigidBodyControl)
+           (com.jme3.bounding BoundingBox BoundingSphere)
            (com.jme3.bullet.objects PhysicsRigidBody)
            (com.jme3.math ColorRGBA Vector3f)
            (com.jme3.scene Geometry Node)
-           (java.util IdentityHashMap Map)))
+           (java.util IdentityHashMap Map)
+           (java.util.logging Logger)))
 
 (set! *warn-on-reflection* true)
 
@@ -96,7 +98,7 @@
 
 (def option-keys
   "Every option `simulation` takes."
-  #{:gravity :floor :observe :eyes :solver})
+  #{:gravity :floor :observe :eyes :solver :scale})
 
 (def solver-keys
   "What a simulation's :solver may set: :iterations (the constraint
@@ -143,10 +145,14 @@
   solver)
 
 (defn- check-options!
-  [{:keys [gravity floor observe solver] :as opts}]
+  [{:keys [gravity floor observe solver scale] :as opts}]
   (doseq [k (keys opts) :when (not (option-keys k))]
     (throw (unknown-key-error "a simulation" k option-keys {:options opts})))
   (check-solver! solver)
+  (when-not (or (= :auto scale) (and (util/finite? scale) (pos? (double scale))))
+    (throw (ex-info (str ":scale must be :auto or a positive number (how many times its size"
+                         " the creature is simulated), not " (pr-str scale))
+                    opts)))
   (when-not (and (sequential? gravity) (= 3 (count gravity)) (every? util/finite? gravity))
     (throw (ex-info (str ":gravity must be [x y z], finite numbers, not " (pr-str gravity)) opts)))
   (when-not (or (nil? floor) (util/finite? floor)
@@ -217,6 +223,135 @@
                            " loaded: (require 'cortex.sight) first")
                       {}))))
 
+(defn- scale-up!
+  "Give `creature` its body `k` times its size: its Node scaled by k
+  about the world's origin, its segments' sleeping thresholds times
+  sqrt k (the same rest as a creature of the larger size), k kept in
+  its record (see `built-scale`)."
+  [^Node creature ^double k]
+  (.setLocalScale creature (.mult (.getLocalScale creature) (float k)))
+  (.setLocalTranslation creature (.mult (.getLocalTranslation creature) (float k)))
+  (body/body! creature {:sleeping-thresholds
+                        (mapv #(* (Math/sqrt k) (double %))
+                              (:sleeping-thresholds segment/default-options))})
+  (segment/record! creature (assoc (segment/record creature) :scale k)))
+
+(defn- built-scale
+  "How many times its size an earlier simulation built `creature`, or
+  nil."
+  [^Node creature]
+  (:scale (segment/record creature)))
+
+
+(def small-creature
+  "The size (the longest side of its box, in the world's units) under
+  which a creature without its body is simulated larger: 10^-0.5, the
+  size from which the power of ten nearest to its reciprocal is 10."
+  (Math/pow 10.0 -0.5))
+
+(defn creature-size
+  "The longest side of the box round everything `creature` shows, in the
+  world."
+  ^double [^Node creature]
+  (.updateGeometricState creature)
+  (let [b (.getWorldBound creature)]
+    (if (instance? BoundingBox b)
+      (let [e (.getExtent ^BoundingBox b (Vector3f.))]
+        (* 2.0 (max (.x e) (.y e) (.z e))))
+      (* 2.0 (.getRadius ^BoundingSphere b)))))
+
+(defn auto-scale
+  "The scale :auto chooses for a creature `size` across: 1 from
+  `small-creature` up, below it the power of ten that brings the size
+  between 0.32 and 3.2."
+  ^double [^double size]
+  (if (and (pos? size) (< size (double small-creature)))
+    (Math/pow 10.0 (Math/round (- (Math/log10 size))))
+    1.0))
+
+(defn- choose-scale
+  "The scale of a simulation of `creature` with `opts`: the one an
+  earlier simulation built it at, else :scale as given, else (:auto)
+  `auto-scale` of its size when it has no body yet and no eyes are
+  asked for; a warning says what :auto chose, or why a small creature
+  is left at its size. An ex-info naming the creature for a scale that
+  cannot be kept."
+  ^double [^Node creature {:keys [scale eyes]}]
+  (let [size (creature-size creature)
+        refuse (fn [why]
+                 (throw (ex-info (str (segment/label creature) ", :scale " scale ": " why)
+                                 {:creature (.getName creature) :scale scale})))
+        log #(.warning (Logger/getLogger "cortex.sim")
+                       (str (segment/label creature) " is " (format "%.3g" size) " across: " %))
+        built (built-scale creature)
+        bodied? (has-body? creature)]
+    (cond
+      built (cond (not (or (= :auto scale) (== (double built) (double scale))))
+                  (refuse (str "an earlier simulation built its body " built " times larger;"
+                               " load the creature again for another scale"))
+                  eyes (refuse "eyes are not simulated at a scale yet; leave :eyes out")
+                  :else (double built))
+      (not= :auto scale) (let [k (double scale)]
+                           (when (and bodied? (not= 1.0 k))
+                             (refuse (str "the creature has its body already, built at its"
+                                          " own size; pass it to simulation before body!, or"
+                                          " leave :scale out")))
+                           (when (and eyes (not= 1.0 k))
+                             (refuse "eyes are not simulated at a scale yet; leave :eyes or :scale out"))
+                           k)
+      :else
+      (let [k (auto-scale size)]
+        (cond (== 1.0 k) 1.0
+              bodied? (do (log (str "at this size Bullet's fixed tolerances keep it from resting;"
+                                    " it has its body already, so it is simulated at its size:"
+                                    " give it to simulation before body! to have it simulated "
+                                    (long k) " times larger"))
+                          1.0)
+              eyes (do (log (str "it is simulated at its size, since its eyes are asked for"
+                                 " (eyes are not simulated at a scale yet)"))
+                       1.0)
+              :else (do (log (str "it is simulated " (long k) " times larger (:scale " (long k)
+                                  "), under " (long k) " times the gravity, and observed in its"
+                                  " own units; give :scale 1 to simulate it at its size"))
+                        k))))))
+
+(defn- scaled-floor
+  "Floor spec `floor` (see `floor`) with its height `k` times as high."
+  [floor ^double k]
+  (cond (== 1.0 k) floor
+        (map? floor) (update floor :height #(* k (double %)))
+        :else (* k (double floor))))
+
+(defn- scaled-substeps!
+  "The substeps of a world of bodies built `k` times their size that
+  would take `n` at that size, at time scale `t`: n times ceil(sqrt k)
+  when k > 1 (at most the :substeps of `solver-bounds`), the larger
+  world's step being then the larger creature's; set on `space` when
+  more than n."
+  ^long [^PhysicsSpace space ^double k t ^long n]
+  (let [m (if (> k 1.0)
+            (min (long (:substeps solver-bounds))
+                 (* n (long (Math/ceil (- (Math/sqrt k) 0.001)))))
+            n)]
+    (when (> m n)
+      (.setAccuracy space (float (world/substep-length t m)))
+      (.setMaxSubSteps space (int m)))
+    m))
+
+(defn- unscaled-segment
+  "A segment's state read in a world `k` times larger, in the creature's
+  own units: positions and velocities over k (turns are the same)."
+  [{:keys [position velocity] :as state} ^double k]
+  (assoc state
+         :position (mapv #(/ (double %) k) position)
+         :velocity (mapv #(/ (double %) k) velocity)))
+
+(defn- unscaled-touch
+  "Touch read in a world `k` times larger: impulses (mass times
+  velocity) over k."
+  [touch ^double k]
+  (update-vals touch (fn [t] (update t :impulse #(/ (double %) k)))))
+
 (defn ^:api simulation
   "A simulation of `creature` (a creature Node; given its body with
   cortex.body/body! unless it has one) in a new PhysicsSpace, with
@@ -229,17 +364,24 @@
   chapter), :solver ({:iterations n :substeps k :projection bool}, any
   of them: overrides cortex's defaults of 20, 1 (more for a creature
   with a body under cortex.engine/thin thick: cortex.world/substeps-for)
-  and true, or a Physics-tab creature's file; see `check-solver!`). Any
-  other key is an error. Use it from one thread at a time; `destroy!`
-  frees it."
+  and true, or a Physics-tab creature's file; see `check-solver!`),
+  :scale (a creature without its body yet is built and simulated that
+  many times its size, under that many times the gravity, and is
+  observed, acted on and reported in its own units; :auto, the
+  default, is 1 but for a creature under `small-creature` across, see
+  `auto-scale` and the chapter). Any other key is an error. Use it
+  from one thread at a time; `destroy!` frees it."
   ([creature] (simulation creature {}))
   ([^Node creature opts]
-   (let [{:keys [gravity floor observe] :as opts}
-         (merge {:gravity [0 -9.81 0] :floor nil :observe all-observations} opts)
+   (let [{:keys [gravity floor observe scale] :as opts}
+         (merge {:gravity [0 -9.81 0] :floor nil :observe all-observations :scale :auto} opts)
          _ (check-options! opts)
-         _ (when-not (has-body? creature) (body/body! creature))
+         k (choose-scale creature opts)
+         _ (cond (has-body? creature) nil
+                 (== 1.0 k) (body/body! creature)
+                 :else (scale-up! creature k))
          tab (tab-settings creature)
-         floor-geom (when floor (cortex.sim/floor floor))
+         floor-geom (when floor (cortex.sim/floor (scaled-floor floor k)))
          root (util/nodify "simulation" (cond-> [creature] floor-geom (conj floor-geom)))
          space (physics-space)
          segs (physical-segments creature)
@@ -250,7 +392,7 @@
          joint-sensors (p/sensors creature)
          bodies (p/bodies-of (mapv #(nth % 2) segs) joint-sensors)
          sensors (p/indexed joint-sensors bodies)
-         g (util/vec3 gravity)]
+         g (util/vec3 (if (== 1.0 k) gravity (mapv #(* k (double %)) gravity)))]
      (engine/add-all! space root)
      (set-solver! space (:solver opts) (double (:time-scale tab 1.0)))
      (.setGravity space g)
@@ -261,12 +403,14 @@
            ;; asked for a number (cortex.world/step-thin-bodies!)
            thin-substeps (if (or (:substeps (:solver opts)) (:substeps tab))
                            1
-                           (world/step-thin-bodies! space (double (:time-scale tab 1.0))))]
-       {:space space :creature creature :root root :observe (set observe)
+                           (scaled-substeps! space k (double (:time-scale tab 1.0))
+                                             (world/step-thin-bodies!
+                                              space (double (:time-scale tab 1.0)))))]
+       {:space space :creature creature :root root :observe (set observe) :scale k
         :solver (solver-of space (:solver opts) tab thin-substeps)
         :sensors sensors
         :bodies bodies
-        :muscles (into {} (for [s sensors] [(:name s) (muscle/muscle s)]))
+        :muscles (into {} (for [s sensors] [(:name s) (muscle/muscle s k)]))
         :segments (mapv (fn [[n ^Geometry g rb]]
                           [n rb (offset-of (segment/mass-offset g))])
                         segs)
@@ -292,6 +436,12 @@
   step, and whether joints are put back within their limits."
   [sim]
   (:solver sim))
+
+(defn ^:api scale
+  "How many times its size `sim` simulates its creature (see
+  `simulation`'s :scale): 1.0 but for a small creature."
+  ^double [sim]
+  (double (:scale sim)))
 
 (defn ^:api steps
   "How many steps `sim` has taken."
@@ -342,7 +492,8 @@
   :rotation :velocity :angular-velocity}}, jME's world axes), :touch and,
   with eyes, :eyes (see cortex.sight/see!)."
   ([sim] (observe sim (:observe sim)))
-  ([{:keys [sensors segments bodies space segment-names object-names untouched sight] :as sim}
+  ([{:keys [sensors segments bodies space segment-names object-names untouched sight]
+     k :scale :as sim}
     parts]
    (if (empty? parts)
      {:time (sim-time sim)}
@@ -355,10 +506,12 @@
        joints? (assoc :joints (p/read-joints sensors states))
        segments?
        (assoc :segments (persistent! (reduce (fn [m [i [n _ offset]]]
-                                               (assoc! m n (segment-state states i offset)))
+                                               (assoc! m n (cond-> (segment-state states i offset)
+                                                             (not= 1.0 k) (unscaled-segment k))))
                                              (transient {}) (map-indexed vector segments))))
        (contains? parts :touch)
-       (assoc :touch (touch/contacts space segment-names object-names untouched)))))))
+       (assoc :touch (cond-> (touch/contacts space segment-names object-names untouched)
+                       (not= 1.0 k) (unscaled-touch k))))))))
 
 (defn ^:api step!
   "Apply `actions` (see cortex.muscle; nil or {} for none) for one step,
@@ -366,9 +519,9 @@
   `observe`). Bad actions throw, naming the joint, before anything is
   applied or stepped."
   ([sim] (step! sim nil))
-  ([{:keys [^PhysicsSpace space muscles ^longs steps ^objects last-efforts] :as sim} actions]
+  ([{:keys [^PhysicsSpace space muscles ^longs steps ^objects last-efforts scale] :as sim} actions]
    (let [es (when (seq actions) (muscle/efforts muscles actions))]
-     (when es (muscle/apply-efforts! muscles es))
+     (when es (muscle/apply-efforts! muscles es scale))
      (aset last-efforts 0 es))
    ;; the space's own limit on substeps: four, or what :solver or the
    ;; creature's Physics tab set

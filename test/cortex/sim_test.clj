@@ -337,3 +337,116 @@
     (doseq [path ["test/fixtures/humanoid/humanoid.blend" "test/fixtures/designer/quadruped.blend"]]
       (let [b (bytes-per-step path)]
         (is (< b 1024.0) (str path ": " b " bytes a step"))))))
+
+(defn- stranger-rest
+  "The strangers' creature `f` dropped limp from 5% of its height onto a
+  floor of friction 1, 10 s, simulated with `opts`: {:height (of the
+  creature) :centre (the mean height of its segments' origins at the
+  end) :fastest (the fastest segment in the last second, m/s) :weight
+  (the touch impulses of the last step, summed) :mass :scale
+  :substeps}."
+  [f opts]
+  (let [^Node c (util/load-blender-model (str "test/fixtures/strangers/" f ".blend"))
+        ^com.jme3.bounding.BoundingBox b (do (.updateGeometricState c) (.getWorldBound c))
+        lo (- (.y (.getCenter b)) (.getYExtent b))
+        hi (+ (.y (.getCenter b)) (.getYExtent b))
+        _ (.move c 0 (float (+ (- (double lo)) (* 0.05 (- (double hi) (double lo))))) 0)
+        s (sim/simulation c (merge {:floor {:height 0 :friction 1.0} :observe #{:segments :touch}}
+                                   opts))]
+    (try
+      (let [obs (vec (repeatedly 600 #(sim/step! s)))
+            speed (fn [v] (Math/sqrt (reduce + (map #(* (double %) (double %)) v))))
+            segs (vals (:segments (peek obs)))]
+        {:height (- (double hi) (double lo))
+         :centre (/ (reduce + (map #(double (second (:position %))) segs)) (count segs))
+         :fastest (apply max (for [o (subvec obs 540), {v :velocity} (vals (:segments o))] (speed v)))
+         :weight (reduce + (map :impulse (vals (:touch (peek obs)))))
+         :mass (reduce + (map :mass (:segments (body/report c))))
+         :scale (sim/scale s) :substeps (:substeps (sim/solver s))})
+      (finally (sim/destroy! s)))))
+
+(deftest a-small-creature-is-simulated-larger
+  (is (= [1000.0 100.0 10.0 10.0 1.0 1.0] (mapv sim/auto-scale [0.0004 0.0157 0.1 0.3 0.32 2.0])))
+  (doseq [f ["worm-eye" "hand" "humanoid"]
+          :let [twin (stranger-rest f {})
+                small (stranger-rest (str f "-0.01") {})]]
+    (testing f
+      (is (= [1.0 100.0] [(:scale twin) (:scale small)]))
+      (is (= 10 (:substeps small)) "its twin's one substep, times sqrt 100")
+      (is (< (:fastest twin) 0.01) (str "the full-size twin still moving at " (:fastest twin)))
+      (is (< (:fastest small) 0.001) (str "at a hundredth, still moving at " (:fastest small) " m/s"))
+      (is (< (Math/abs (- (* 100 (double (:centre small))) (double (:centre twin))))
+             (* 0.05 (double (:height twin))))
+          (str "at a hundredth its centre ends at " (:centre small) ", its twin's at " (:centre twin)))
+      ;; lying without touching itself, the small creature's touch
+      ;; impulses are its weight over the last Bullet step, 1/(60 n) s;
+      ;; on jBullet only: native Bullet's sleeping bodies keep stale
+      ;; impulses (its full-size worm's read 1.7 times its weight, the
+      ;; hand's 0.73, the small hand's 0.93 or 1.0 as it landed)
+      (when (and (#{"worm-eye" "hand"} f) (= :jbullet engine/name))
+        (let [{:keys [weight mass substeps]} small
+              w (/ (* (double mass) 9.81) (* 60.0 (long substeps)))]
+          (is (< (Math/abs (- (double weight) w)) (* 0.05 w))
+              (str "the floor bears " weight " N s in a Bullet step, where the weight gives "
+                   w))))))
+  (let [at-size (stranger-rest "hand-0.01" {:scale 1})]
+    (is (= 1.0 (:scale at-size)))
+    (is (= 6 (:substeps at-size)) "its own, sqrt(0.05 / its thinnest) rounded up")))
+
+(defn- scaled-run
+  "The worm simulated at `scale` with one substep, no floor, its joint
+  told to bend to 0.5 rad for 30 steps, then pushed with a third of
+  its strength for 30: [every observation, the last efforts, the
+  muscle]."
+  [scale]
+  (let [s (sim/simulation (util/load-blender-model f/worm-path)
+                          {:scale scale :solver {:substeps 1} :observe #{:joints :segments}})
+        strength (:strength (get (:muscles s) "worm-joint"))]
+    (try
+      [(vec (for [i (range 60)]
+              (sim/step! s {"worm-joint" (if (< i 30) {:target 0.5} (/ strength 3.0))})))
+       (sim/last-efforts s)
+       (select-keys (get (:muscles s) "worm-joint") [:strength :kp :kd :inertia])]
+      (finally (sim/destroy! s)))))
+
+(defn- numbers [x] (filter number? (tree-seq coll? seq x)))
+
+(deftest a-creature-simulated-larger-is-the-same-creature
+  (let [[obs efforts muscle] (scaled-run 1)
+        [obs-10 efforts-10 muscle-10] (scaled-run 10)
+        apart (fn [a b] (apply max (map #(Math/abs (- (double %1) (double %2))) (numbers a) (numbers b))))]
+    (is (= (count (numbers obs)) (count (numbers obs-10))))
+    (is (< 0.1 (Math/abs (double (get-in obs [29 :joints "worm-joint" :angle])))) "the worm bends")
+    (is (< (apply max (map #(Math/abs (double %)) (numbers (:segments (peek obs))))) 100))
+    (is (< (apply max (map apart obs obs-10)) 1e-4) "every observation, as at its size")
+    (is (< (apart efforts efforts-10) (* 1e-6 (:strength muscle))) (str efforts " " efforts-10))
+    ;; to a float's precision: the joint's pivots are floats, ten times larger
+    (is (< (apart muscle muscle-10) (* 1e-6 (apply max (numbers muscle)))) (str muscle " " muscle-10))))
+
+(deftest a-scale-is-refused-where-it-cannot-be-kept
+  (let [bodied (body/body! (util/load-blender-model f/worm-path))
+        fails (fn [opts c] (try (sim/destroy! (sim/simulation c opts)) nil
+                                (catch clojure.lang.ExceptionInfo e (ex-message e))))]
+    (is (re-find #"worm.*:scale 10: the creature has its body already.*before body!"
+                 (str (fails {:scale 10} bodied))))
+    (is (re-find #":scale 10: eyes are not simulated at a scale yet"
+                 (str (fails {:scale 10 :eyes true}
+                             (util/load-blender-model "Models/test-creature/worm-eyes.blend")))))
+    (doseq [bad [0 -1 :big ##NaN "10"]]
+      (is (re-find #":scale must be :auto or a positive number" (str (fails {:scale bad} bodied)))
+          (pr-str bad)))
+    (testing "a creature built larger is simulated larger again, and only so"
+      (let [c (util/load-blender-model "test/fixtures/strangers/hand-0.01.blend")
+            first-sim (sim/simulation c {:floor 0})
+            _ (sim/destroy! first-sim)
+            again (sim/simulation c {:floor 0})]
+        (is (= [100.0 100.0] [(sim/scale first-sim) (sim/scale again)]))
+        (is (= 10 (:substeps (sim/solver again))))
+        (sim/destroy! again)
+        (is (re-find #":scale 10: an earlier simulation built its body 100.0 times larger"
+                     (str (fails {:scale 10} c))))))
+    (testing "a small creature that has its body is simulated at its size"
+      (let [s (sim/simulation (body/body! (util/load-blender-model
+                                           "test/fixtures/strangers/hand-0.01.blend")))]
+        (is (= 1.0 (sim/scale s)))
+        (sim/destroy! s)))))
