@@ -229,10 +229,11 @@
 
 (defn- depth-of
   "Eye rectangle x0, w x h of the strip's depth (0 to 1, bottom row
-  first) as distances along the view axis, top row first."
-  ^floats [^FloatBuffer depth strip-w x0 w h {:keys [near far parallel?]}]
+  first) as distances along the view axis, top row first, over `scale`
+  (the scene's size over the creature's)."
+  ^floats [^FloatBuffer depth strip-w x0 w h {:keys [near far parallel?]} scale]
   (let [w (long w) h (long h) strip-w (long strip-w) x0 (long x0)
-        n (double near) f (double far)
+        n (double near) f (double far) k (double scale)
         out (float-array (* w h))]
     (dotimes [row h]
       (let [src-row (+ x0 (* strip-w (- h 1 row)))
@@ -240,9 +241,10 @@
         (dotimes [col w]
           (let [d (double (.get depth (int (+ src-row col))))]
             (aset out (+ dst-row col)
-                  (float (if parallel?
-                           (+ n (* d (- f n)))
-                           (/ (* n f) (- f (* d (- f n)))))))))))
+                  (float (/ (if parallel?
+                              (+ n (* d (- f n)))
+                              (/ (* n f) (- f (* d (- f n)))))
+                            k)))))))
     out))
 
 (defn- ids-of
@@ -279,7 +281,7 @@
                          (cond-> {:width w :height h}
                            (get options :rgb true) (assoc :rgb (rgb-of rgba width x w h))
                            (get options :depth true)
-                           (assoc :depth (depth-of depth width x w h f)))]))]
+                           (assoc :depth (depth-of depth width x w h f (:scale rig 1.0))))]))]
     (if-not seg?
       base
       (do (set-materials! mirror true)
@@ -402,15 +404,21 @@
 (defn open!
   "Eyes for a simulation of `creature` whose scene is `root`, as `eyes`
   asks (see `choose`): a GL context on its own thread, the mirror and
-  the strip. Returns the eyes, for `see!` and `close!`."
-  [creature ^Node root eyes]
-  (let [chosen (choose creature eyes)
-        plan (layout chosen)]
-    (open-context!
-     (fn [^RenderManager rm]
-       (let [am (util/asset-manager {:new true})
-             m (mirror root am)]
-         {:rm rm :mirror m :rig (rig plan (:node m))})))))
+  the strip. Returns the eyes, for `see!` and `close!`. `scale` (1 when
+  not given) is how many times its size the simulation built the
+  creature: each eye's clipping distances are that many times farther
+  (cortex.vision/scaled-spec), and its depth is read back in the
+  creature's units."
+  ([creature root eyes] (open! creature root eyes 1.0))
+  ([creature ^Node root eyes scale]
+   (let [chosen (mapv (fn [[record opts]] [(update record :spec vision/scaled-spec scale) opts])
+                      (choose creature eyes))
+         plan (layout chosen)]
+     (open-context!
+      (fn [^RenderManager rm]
+        (let [am (util/asset-manager {:new true})
+              m (mirror root am)]
+          {:rm rm :mirror m :rig (assoc (rig plan (:node m)) :scale (double scale))}))))))
 
 (defn see!
   "What the eyes see now, on their GL thread: {eye-name {:width :height

@@ -272,11 +272,10 @@
 (defn- choose-scale
   "The scale of a simulation of `creature` with `opts`: the one an
   earlier simulation built it at, else :scale as given, else (:auto)
-  `auto-scale` of its size when it has no body yet and no eyes are
-  asked for; a warning says what :auto chose, or why a small creature
-  is left at its size. An ex-info naming the creature for a scale that
-  cannot be kept."
-  ^double [^Node creature {:keys [scale eyes]}]
+  `auto-scale` of its size when it has no body yet; a warning says what
+  :auto chose, or why a small creature is left at its size. An ex-info
+  naming the creature for a scale that cannot be kept."
+  ^double [^Node creature {:keys [scale]}]
   (let [size (creature-size creature)
         refuse (fn [why]
                  (throw (ex-info (str (segment/label creature) ", :scale " scale ": " why)
@@ -289,15 +288,12 @@
       built (cond (not (or (= :auto scale) (== (double built) (double scale))))
                   (refuse (str "an earlier simulation built its body " built " times larger;"
                                " load the creature again for another scale"))
-                  eyes (refuse "eyes are not simulated at a scale yet; leave :eyes out")
                   :else (double built))
       (not= :auto scale) (let [k (double scale)]
                            (when (and bodied? (not= 1.0 k))
                              (refuse (str "the creature has its body already, built at its"
                                           " own size; pass it to simulation before body!, or"
                                           " leave :scale out")))
-                           (when (and eyes (not= 1.0 k))
-                             (refuse "eyes are not simulated at a scale yet; leave :eyes or :scale out"))
                            k)
       :else
       (let [k (auto-scale size)]
@@ -307,9 +303,6 @@
                                     " give it to simulation before body! to have it simulated "
                                     (long k) " times larger"))
                           1.0)
-              eyes (do (log (str "it is simulated at its size, since its eyes are asked for"
-                                 " (eyes are not simulated at a scale yet)"))
-                       1.0)
               :else (do (log (str "it is simulated " (long k) " times larger (:scale " (long k)
                                   "), under " (long k) " times the gravity, and observed in its"
                                   " own units; give :scale 1 to simulate it at its size"))
@@ -428,7 +421,7 @@
         ;; eyes (vision.org): loaded only when asked for, so that a
         ;; simulation without eyes loads no OpenGL
         :sight (when-let [eyes (:eyes opts)]
-                 ((:open! (sight-hooks)) creature root eyes))}))))
+                 ((:open! (sight-hooks)) creature root eyes k))}))))
 
 (defn ^:api solver
   "How `sim` steps: {:iterations n :substeps k :projection bool}, the

@@ -178,6 +178,18 @@
      (if parallel?
        {:width (- (double right) (double left)) :height (- (double top) (double bottom))}
        {:x (angle left right) :y (angle bottom top)}))))
+(defn scaled-spec
+  "Eye `spec` in a scene `k` times the creature's size (a simulation's
+  :scale): its near and far distances, and an orthographic camera's
+  width, k times larger, so that it sees what it sees at the creature's
+  size."
+  [spec k]
+  (let [k (double k)]
+    (if (== 1.0 k)
+      spec
+      (cond-> (-> spec (update :near #(* k (double %))) (update :far #(* k (double %))))
+        (get-in spec [:camera :ortho-scale])
+        (update-in [:camera :ortho-scale] #(* k (double %)))))))
 
 (def ^:private fmt nearest/fmt-length)
 

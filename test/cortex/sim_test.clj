@@ -429,9 +429,6 @@
                                 (catch clojure.lang.ExceptionInfo e (ex-message e))))]
     (is (re-find #"worm.*:scale 10: the creature has its body already.*before body!"
                  (str (fails {:scale 10} bodied))))
-    (is (re-find #":scale 10: eyes are not simulated at a scale yet"
-                 (str (fails {:scale 10 :eyes true}
-                             (util/load-blender-model "Models/test-creature/worm-eyes.blend")))))
     (doseq [bad [0 -1 :big ##NaN "10"]]
       (is (re-find #":scale must be :auto or a positive number" (str (fails {:scale bad} bodied)))
           (pr-str bad)))

@@ -374,3 +374,27 @@
             (recur more []))
           :else (recur more (conj pending line)))))
     (remove-ns (ns-name the-ns))))
+
+(defn- first-sight
+  "[scale, what the eye \"eye\" of the strangers' worm `f` sees before a
+  step (segment names per pixel, depth)] on a floor at 0."
+  [f]
+  (let [s (sim/simulation (util/load-blender-model (str "test/fixtures/strangers/" f ".blend"))
+                          {:floor 0 :observe #{:eyes} :eyes {"eye" {:segmentation true}}})]
+    (try
+      (let [{:keys [segmentation labels depth]} (get-in (sim/observe s) [:eyes "eye"])]
+        [(sim/scale s) (mapv #(get labels % :none) segmentation) (vec depth)])
+      (finally (sim/destroy! s)))))
+
+(deftest a-small-creature-s-eye-sees-as-its-twin-s
+  (let [[k1 seen depth] (first-sight "worm-eye")
+        [k100 seen-small depth-small] (first-sight "worm-eye-0.01")
+        n (count seen)
+        same (count (filter true? (map = seen seen-small)))
+        near (count (filter true? (map (fn [a b] (< (Math/abs (- (* 100.0 (double b)) (double a)))
+                                                    (* 0.01 (double a))))
+                                       depth depth-small)))]
+    (is (= [1.0 100.0] [k1 k100]))
+    (is (< 1 (count (distinct seen))) (str "the eye sees more than one thing: " (frequencies seen)))
+    (is (< 0.99 (/ same (double n))) (str same " of " n " pixels see the same segment"))
+    (is (< 0.99 (/ near (double n))) (str near " of " n " pixels' depths within 1%"))))
