@@ -251,14 +251,14 @@
 
 (defn creature-size
   "The longest side of the box round everything `creature` shows, in the
-  world."
+  world; 0 for a creature that shows nothing."
   ^double [^Node creature]
   (.updateGeometricState creature)
   (let [b (.getWorldBound creature)]
-    (if (instance? BoundingBox b)
-      (let [e (.getExtent ^BoundingBox b (Vector3f.))]
-        (* 2.0 (max (.x e) (.y e) (.z e))))
-      (* 2.0 (.getRadius ^BoundingSphere b)))))
+    (cond (instance? BoundingBox b) (let [e (.getExtent ^BoundingBox b (Vector3f.))]
+                                      (* 2.0 (max (.x e) (.y e) (.z e))))
+          (instance? BoundingSphere b) (* 2.0 (.getRadius ^BoundingSphere b))
+          :else 0.0)))
 
 (defn auto-scale
   "The scale :auto chooses for a creature `size` across: 1 from

@@ -366,7 +366,8 @@
       (finally (sim/destroy! s)))))
 
 (deftest a-small-creature-is-simulated-larger
-  (is (= [1000.0 100.0 10.0 10.0 1.0 1.0] (mapv sim/auto-scale [0.0004 0.0157 0.1 0.3 0.32 2.0])))
+  (is (= [1000.0 100.0 10.0 10.0 1.0 1.0 1.0] (mapv sim/auto-scale [0.0004 0.0157 0.1 0.3 0.32 2.0 0.0])))
+  (is (= 0.0 (sim/creature-size (Node. "nothing"))) "a creature that shows nothing")
   (doseq [f ["worm-eye" "hand" "humanoid"]
           :let [twin (stranger-rest f {})
                 small (stranger-rest (str f "-0.01") {})]]
@@ -392,6 +393,23 @@
   (let [at-size (stranger-rest "hand-0.01" {:scale 1})]
     (is (= 1.0 (:scale at-size)))
     (is (= 6 (:substeps at-size)) "its own, sqrt(0.05 / its thinnest) rounded up")))
+
+(deftest a-creature-that-rests-at-its-size-rests-where-it-did
+  (let [drop (fn [scale]
+               (let [c (util/load-blender-model "test/fixtures/flat-strangers/glider.blend")
+                     s (sim/simulation c {:floor {:height 0 :friction 1.0} :observe #{:segments}
+                                          :scale scale})]
+                 (try
+                   (let [o (last (repeatedly 600 #(sim/step! s)))
+                         ys (map #(double (second (:position %))) (vals (:segments o)))]
+                     [(sim/scale s) (/ (reduce + ys) (count ys))])
+                   (finally (sim/destroy! s)))))
+        [k1 at-size] (drop 1)
+        [k10 larger] (drop :auto)]
+    (is (= [1.0 10.0] [k1 k10]))
+    ;; 2% of its height, 0.0355
+    (is (< (Math/abs (- (double at-size) (double larger))) 0.0007)
+        (str "its centre ends at " larger ", at its size " at-size))))
 
 (defn- scaled-run
   "The worm simulated at `scale` with one substep, no floor, its joint
