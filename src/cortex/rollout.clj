@@ -28,7 +28,7 @@
 (def spec-keys
   "Every key a spec may have."
   #{:creature :controller :params :seconds :seed :start :floor :observe
-    :torso :fall-angle :trajectory :id :solver})
+    :torso :fall-angle :trajectory :id :solver :scale})
 
 (def max-seconds
   "The longest rollout, simulated seconds."
@@ -37,7 +37,7 @@
 (def defaults
   "What a spec leaves out."
   {:controller nil :params nil :seed 0 :start {:shift 0.0 :turn 0.0} :floor 0
-   :observe #{} :torso nil :fall-angle (/ Math/PI 3) :trajectory nil :solver nil})
+   :observe #{} :torso nil :fall-angle (/ Math/PI 3) :trajectory nil :solver nil :scale :auto})
 
 (defn- fail!
   [index spec field message & [cause]]
@@ -89,7 +89,7 @@
     (fail! index spec k (str "unknown key; " (when near (str "did you mean " near "? "))
                              "a spec takes " (str/join ", " (sort spec-keys)))))
   (let [{:keys [creature controller params seconds seed start floor observe torso
-                fall-angle trajectory] :as s} (merge defaults spec)]
+                fall-angle trajectory scale] :as s} (merge defaults spec)]
     (when-not (creature-exists? creature)
       (fail! index s :creature (str (pr-str creature) " is no file, nor an asset under assets/"
                                     " or on the classpath")))
@@ -114,6 +114,8 @@
     (try (sim/check-solver! (:solver s))
          (catch clojure.lang.ExceptionInfo e
            (fail! index s :solver (ex-message e) e)))
+    (when-not (or (= :auto scale) (and (finite? scale) (pos? (double scale))))
+      (fail! index s :scale (str "must be :auto or a positive number, not " (pr-str scale))))
     (when-not (or (nil? trajectory) (pos-int? trajectory))
       (fail! index s :trajectory (str "must be nil or a positive whole number of steps, not "
                                       (pr-str trajectory))))
@@ -193,9 +195,10 @@
   before its first step: the creature loaded, placed as its seed says,
   built, over its floor. To watch a rollout, show it with sim/world and
   `controller`."
-  [{:keys [creature seed start floor observe solver]}]
+  [{:keys [creature seed start floor observe solver scale]}]
   (let [c (doto ^Node (blender/load-blender-model creature) (place! seed start))]
-    (sim/simulation c (cond-> {:floor floor :observe (into #{:joints :segments} observe)}
+    (sim/simulation c (cond-> {:floor floor :observe (into #{:joints :segments} observe)
+                               :scale (or scale :auto)}
                         solver (assoc :solver solver)))))
 
 (defn controller

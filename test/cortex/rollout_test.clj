@@ -105,6 +105,7 @@
              [(assoc worm :sceonds 3) :sceonds #"unknown key; did you mean :seconds\?"]
              [(assoc worm :solver {:substeps 0}) :solver #":substeps must be a whole number from 1 to 64"]
              [(assoc worm :solver {:iteration 20}) :solver #"did you mean :iterations\?"]
+             [(assoc worm :scale 0) :scale #"must be :auto or a positive number, not 0"]
              [(assoc worm :eyes true) :eyes #"rollouts run without eyes.*org/vision\.org"]]]
       (let [[message data] (failure [good bad])]
         (is (= {:index 1 :field field} data) (pr-str bad))
@@ -113,6 +114,16 @@
   (is (= 0 @calls) "nothing ran")
   (is (thrown-with-msg? clojure.lang.ExceptionInfo #"^spec, :seconds"
                         (r/rollout (assoc worm :seconds 0)))))
+
+(deftest a-small-creature-s-rollout-is-simulated-larger
+  (let [small {:creature "test/fixtures/strangers/hand-0.01.blend" :seconds 1}
+        scale-of (fn [spec] (let [s (r/simulation (r/check-spec! nil spec))]
+                              (try (sim/scale s) (finally (sim/destroy! s)))))]
+    (is (= [100.0 1.0 1.0] [(scale-of small) (scale-of (assoc small :scale 1))
+                            (scale-of (dissoc worm :controller :params))]))
+    (let [result (r/rollout small)]
+      (is (nil? (:error result)) (str (:error result)))
+      (is (= 60 (:steps result))))))
 
 (deftest a-failing-rollout-is-its-own-row
   (let [dir (Files/createTempDirectory "cortex-rollout" (into-array FileAttribute []))
