@@ -302,11 +302,33 @@
   "Why each untested example is not run: page to reasons, in order."
   {"doc/repl.md" ["show! opens a window, and (reset) writes the source files again from org/"]})
 
+(defn- delete-tree! [^File f]
+  (when (.isDirectory f)
+    (run! delete-tree! (.listFiles f)))
+  (.delete f))
+
+(defn with-own-tmpdir
+  "Call `f` with the system property java.io.tmpdir set to a fresh
+  folder of its own, and afterwards delete that folder and put the
+  property back."
+  [f]
+  (let [before (System/getProperty "java.io.tmpdir")
+        dir (.toFile (java.nio.file.Files/createTempDirectory
+                      "cortex-examples" (make-array java.nio.file.attribute.FileAttribute 0)))]
+    (try
+      (System/setProperty "java.io.tmpdir" (str dir))
+      (f)
+      (finally
+        (System/setProperty "java.io.tmpdir" before)
+        (delete-tree! dir)))))
+
 (deftest every-example-runs
-  (doseq [page (pages)]
-    (testing page
-      (doseq [result (run-page page (slurp page))]
-        (is (= :ok (:status result)) (describe result))))))
+  (with-own-tmpdir
+    (fn []
+      (doseq [page (pages)]
+        (testing page
+          (doseq [result (run-page page (slurp page))]
+            (is (= :ok (:status result)) (describe result))))))))
 
 (deftest every-untested-example-is-declared
   (testing "every page declared exists"
