@@ -344,29 +344,32 @@
   creature) :centre (the mean height of its segments' origins at the
   end) :fastest (the fastest segment in the last second, m/s) :weight
   (the touch impulses of the last step, summed) :mass :scale
-  :substeps}."
-  [f opts]
-  (let [^Node c (util/load-blender-model (str "test/fixtures/strangers/" f ".blend"))
-        ^com.jme3.bounding.BoundingBox b (do (.updateGeometricState c) (.getWorldBound c))
-        lo (- (.y (.getCenter b)) (.getYExtent b))
-        hi (+ (.y (.getCenter b)) (.getYExtent b))
-        _ (.move c 0 (float (+ (- (double lo)) (* 0.05 (- (double hi) (double lo))))) 0)
-        s (sim/simulation c (merge {:floor {:height 0 :friction 1.0} :observe #{:segments :touch}}
-                                   opts))]
-    (try
-      (let [obs (vec (repeatedly 600 #(sim/step! s)))
-            speed (fn [v] (Math/sqrt (reduce + (map #(* (double %) (double %)) v))))
-            segs (vals (:segments (peek obs)))]
-        {:height (- (double hi) (double lo))
-         :centre (/ (reduce + (map #(double (second (:position %))) segs)) (count segs))
-         :fastest (apply max (for [o (subvec obs 540), {v :velocity} (vals (:segments o))] (speed v)))
-         :weight (reduce + (map :impulse (vals (:touch (peek obs)))))
-         :mass (reduce + (map :mass (:segments (body/report c))))
-         :scale (sim/scale s) :substeps (:substeps (sim/solver s))})
-      (finally (sim/destroy! s)))))
+  :substeps}; with `k`, its file's scene first made k times its size."
+  ([f opts] (stranger-rest f 1.0 opts))
+  ([f k opts]
+   (let [^Node c (doto ^Node (util/load-blender-model (str "test/fixtures/strangers/" f ".blend"))
+                   (.setLocalScale (float k)))
+         ^com.jme3.bounding.BoundingBox b (do (.updateGeometricState c) (.getWorldBound c))
+         lo (- (.y (.getCenter b)) (.getYExtent b))
+         hi (+ (.y (.getCenter b)) (.getYExtent b))
+         _ (.move c 0 (float (+ (- (double lo)) (* 0.05 (- (double hi) (double lo))))) 0)
+         s (sim/simulation c (merge {:floor {:height 0 :friction 1.0} :observe #{:segments :touch}}
+                                    opts))]
+     (try
+       (let [obs (vec (repeatedly 600 #(sim/step! s)))
+             speed (fn [v] (Math/sqrt (reduce + (map #(* (double %) (double %)) v))))
+             segs (vals (:segments (peek obs)))]
+         {:height (- (double hi) (double lo))
+          :centre (/ (reduce + (map #(double (second (:position %))) segs)) (count segs))
+          :fastest (apply max (for [o (subvec obs 540), {v :velocity} (vals (:segments o))] (speed v)))
+          :weight (reduce + (map :impulse (vals (:touch (peek obs)))))
+          :mass (reduce + (map :mass (:segments (body/report c))))
+          :scale (sim/scale s) :substeps (:substeps (sim/solver s))})
+       (finally (sim/destroy! s))))))
 
 (deftest a-small-creature-is-simulated-larger
-  (is (= [1000.0 100.0 10.0 10.0 1.0 1.0 1.0] (mapv sim/auto-scale [0.0004 0.0157 0.1 0.3 0.32 2.0 0.0])))
+  (is (= [10000.0 100.0 100.0 10.0 10.0 10.0 10.0 1.0 1.0 1.0]
+         (mapv sim/auto-scale [0.0004 0.0157 0.099 0.1 0.3 0.83 0.999 1.0 2.0 0.0])))
   (is (= 0.0 (sim/creature-size (Node. "nothing"))) "a creature that shows nothing")
   (doseq [f ["worm-eye" "hand" "humanoid"]
           :let [twin (stranger-rest f {})
@@ -394,22 +397,48 @@
     (is (= 1.0 (:scale at-size)))
     (is (= 6 (:substeps at-size)) "its own, sqrt(0.05 / its thinnest) rounded up")))
 
+(deftest a-creature-under-1-across-is-simulated-larger
+  (doseq [f ["worm-eye" "humanoid"]
+          :let [twin (stranger-rest f {})]
+          k (if (= f "humanoid") [0.3 0.5] [0.3])
+          :let [small (stranger-rest f k {})]]
+    (testing (str f " at " k)
+      (is (= 10.0 (:scale small)))
+      (is (= 4 (:substeps small)) "its twin's one substep, times ceil(sqrt 10)")
+      (is (< (:fastest small) 0.001) (str "still moving at " (:fastest small) " m/s"))
+      (is (< (Math/abs (- (/ (double (:centre small)) k) (double (:centre twin))))
+             (* 0.05 (double (:height twin))))
+          (str "over " k ", its centre ends at " (/ (:centre small) k) ", its twin's at "
+               (:centre twin))))))
+
 (deftest a-creature-that-rests-at-its-size-rests-where-it-did
-  (let [drop (fn [scale]
-               (let [c (util/load-blender-model "test/fixtures/flat-strangers/glider.blend")
-                     s (sim/simulation c {:floor {:height 0 :friction 1.0} :observe #{:segments}
-                                          :scale scale})]
-                 (try
-                   (let [o (last (repeatedly 600 #(sim/step! s)))
-                         ys (map #(double (second (:position %))) (vals (:segments o)))]
-                     [(sim/scale s) (/ (reduce + ys) (count ys))])
-                   (finally (sim/destroy! s)))))
-        [k1 at-size] (drop 1)
-        [k10 larger] (drop :auto)]
-    (is (= [1.0 10.0] [k1 k10]))
-    ;; 2% of its height, 0.0355
-    (is (< (Math/abs (- (double at-size) (double larger))) 0.0007)
-        (str "its centre ends at " larger ", at its size " at-size))))
+  (doseq [f ["flat-strangers/glider" "flat-strangers/leaf-walker"
+             "flat-strangers/flat-hexagon-paddle" "strangers/inverted_pendulum"]
+          :let [drop (fn [scale]
+                       (let [^Node c (util/load-blender-model (str "test/fixtures/" f ".blend"))
+                             ^com.jme3.bounding.BoundingBox b (do (.updateGeometricState c) (.getWorldBound c))
+                             lo (- (.y (.getCenter b)) (.getYExtent b))
+                             hi (+ (.y (.getCenter b)) (.getYExtent b))
+                             _ (.move c 0 (float (+ (- (double lo)) (* 0.05 (- (double hi) (double lo))))) 0)
+                             s (sim/simulation c {:floor {:height 0 :friction 1.0} :observe #{:segments}
+                                                  :scale scale})]
+                         (try
+                           (let [obs (vec (repeatedly 600 #(sim/step! s)))
+                                 ys (map #(double (second (:position %))) (vals (:segments (peek obs))))]
+                             {:scale (sim/scale s) :height (- (double hi) (double lo))
+                              :centre (/ (reduce + ys) (count ys))
+                              :fastest (apply max (for [o (subvec obs 540), {v :velocity} (vals (:segments o))]
+                                                    (Math/sqrt (reduce + (map #(* (double %) (double %)) v)))))})
+                           (finally (sim/destroy! s)))))
+                at-size (drop 1)
+                larger (drop :auto)]]
+    (testing f
+      (println (format "%s: centre %.4f at its size (fastest %.3f m/s), %.4f simulated 10 times larger (%.3f)"
+                       f (:centre at-size) (:fastest at-size) (:centre larger) (:fastest larger)))
+      (is (= [1.0 10.0] [(:scale at-size) (:scale larger)]))
+      (is (< (:fastest larger) 0.001) (str "simulated larger, still moving at " (:fastest larger)))
+      (is (< (Math/abs (- (double (:centre at-size)) (double (:centre larger)))) (* 0.02 (:height at-size)))
+          (str "its centre ends at " (:centre larger) ", at its size " (:centre at-size))))))
 
 (defn- scaled-run
   "The worm simulated at `scale` with one substep, no floor, its joint
