@@ -47,7 +47,7 @@
     six-dof-joint [[7] "a six-degree-of-freedom joint between two bodies, limited"]
     six-dof-angles [[1] "a six-DOF joint's three angles now"]
     six-dof-safe-middle [:value "the widest middle angle a six-DOF joint is given"]
-    spring-joint [[9] "a sprung six-DOF joint, or an error naming the engine that has none"]
+    spring-joint [[9] "a six-DOF joint whose three angles are sprung towards the pose it was built in"]
     hinge-limits [[1] "the limits to give a jME HingeJoint for the designer's [lo hi]"]
     limit-hinge! [[3] "limit a HingeJoint to [low high] in the engine's sense of its angle"]
     frame-hinge-limit [[1] "the limit to give a FrameHingeJoint so that it stops at an angle"]

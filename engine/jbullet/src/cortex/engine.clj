@@ -11,7 +11,8 @@
            (com.bulletphysics.collision.dispatch CollisionObject)
            (com.bulletphysics.collision.shapes CompoundShape ConvexHullShape)
            (com.bulletphysics.dynamics DynamicsWorld RigidBody)
-           (com.bulletphysics.dynamics.constraintsolver ConeTwistConstraint HingeConstraint SolverMode)
+           (com.bulletphysics.dynamics.constraintsolver ConeTwistConstraint HingeConstraint SolverMode
+                                                        TypedConstraint)
            (com.bulletphysics.linearmath MatrixUtil ScalarUtil Transform)
            (com.jme3.bullet PhysicsSpace)
            (com.jme3.bullet.collision PhysicsCollisionObject)
@@ -19,7 +20,7 @@
                                              MeshCollisionShape)
            (com.jme3.bullet.joints PhysicsJoint)
            (com.jme3.bullet.objects PhysicsRigidBody)
-           (cortex JointLimit MeteredSixDofJoint)
+           (cortex JointLimit JointSpring MeteredSixDofJoint)
            (com.jme3.math Matrix3f Vector3f)
            (com.jme3.scene Mesh)
            (javax.vecmath Quat4f)))
@@ -459,21 +460,23 @@
       (.setAngularUpperLimit j (Vector3f. (float t) (float y) (float z))))
     j))
 
-(defn spring-joint
-  "A spring joint (see the body chapter): jBullet has none, so an error
-  that says what to do instead."
-  [_ _ _ _ _ _ _ _ _]
-  (throw (ex-info (str "a :spring joint needs native Bullet (lein with-profile +native ...);"
-                       " on jBullet use a :cone held by a muscle")
-                  {:engine name})))
 
 (def ^:private ^java.util.Map limit-rows
-  "Each joint `limit-rows!` was given (weakly held) -> [sequence
-  JointLimit], the sequence the order they were given in."
+  "Each joint given rows of cortex's own (`limit-rows!`, `spring-joint`;
+  weakly held) -> [sequence [constraint ...]], the sequence the order
+  the joints were given them in."
   (java.util.Collections/synchronizedMap (java.util.WeakHashMap.)))
 
 (def ^:private ^java.util.concurrent.atomic.AtomicLong limit-sequence
   (java.util.concurrent.atomic.AtomicLong.))
+
+(defn- add-rows!
+  "Keep jBullet constraint `c` beside `joint`, after any it has, to join
+  whatever space `joint` is in (see `place-limit-rows!`)."
+  [joint c]
+  (locking limit-rows
+    (let [[n cs] (.get limit-rows joint)]
+      (.put limit-rows joint [(or n (.incrementAndGet limit-sequence)) (conj (or cs []) c)]))))
 
 (defn limit-rows!
   "Give the hinge or cone `joint` rows of its own that hold its limits
@@ -496,7 +499,7 @@
           vec (fn [^Vector3f v] (javax.vecmath.Vector3f. (.x v) (.y v) (.z v)))]
       (set! (.pivotA l) (vec (.getPivotA joint)))
       (set! (.pivotB l) (vec (.getPivotB joint))))
-    (.put limit-rows joint [(.incrementAndGet limit-sequence) l])
+    (add-rows! joint l)
     joint))
 
 (defn- place-limit-rows!
@@ -515,11 +518,33 @@
                 :when (not (.containsKey seen j))]
           (.removeConstraint world l)
           (.remove placed l))
-        (doseq [[_ ^JointLimit l j] (sort-by first (keep (fn [j] (when-let [[n l] (.get limit-rows j)] [n l j]))
-                                                         joints))
+        (doseq [[_ ^TypedConstraint l j] (sort-by first (mapcat (fn [j] (when-let [[n cs] (.get limit-rows j)]
+                                                                          (for [c cs] [n c j])))
+                                                                joints))
                 :when (not (.containsKey placed l))]
           (.addConstraint world l true)
           (.put placed l j))))))
+
+(defn- frame-array
+  "The rotation `m` (Matrix3f; none: no turn) as a quaternion [x y z w]."
+  ^doubles [m]
+  (let [q (com.jme3.math.Quaternion.)]
+    (when m (.fromRotationMatrix q ^Matrix3f m))
+    (double-array [(.getX q) (.getY q) (.getZ q) (.getW q)])))
+
+(defn spring-joint
+  "A spring joint (see the body chapter): `six-dof-joint`'s joint of
+  these bodies, pivots, frames and `limits` [t y z], its three angles
+  each sprung towards 0 with `stiffness` (N m/rad) and `damping`
+  (N m s/rad). jBullet has no spring constraint, so the springs are
+  cortex.JointSpring, placed with the joint (`add-rows!`)."
+  [control-a control-b pivot-a pivot-b frame-a frame-b limits stiffness damping]
+  (let [^PhysicsJoint j (six-dof-joint control-a control-b pivot-a pivot-b frame-a frame-b limits)]
+    (add-rows! j (JointSpring. ^RigidBody (.getObjectId (.getBodyA j))
+                               ^RigidBody (.getObjectId (.getBodyB j))
+                               (frame-array frame-a) (frame-array frame-b)
+                               (double stiffness) (double damping)))
+    j))
 
 (def ^:private ^java.lang.reflect.Field local-time
   "jBullet's DiscreteDynamicsWorld.localTime, made writable."
