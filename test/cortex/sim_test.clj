@@ -440,6 +440,27 @@
       (is (< (Math/abs (- (double (:centre at-size)) (double (:centre larger)))) (* 0.02 (:height at-size)))
           (str "its centre ends at " (:centre larger) ", at its size " (:centre at-size))))))
 
+(deftest a-small-rod-lies-still
+  (doseq [sides [16 32]
+          :let [rod (doto (Node. "rod")
+                      (.attachChild (Geometry. "rod" (com.jme3.scene.shape.Cylinder.
+                                                      2 (int sides) (float 0.03) (float 0.6) true)))
+                      (.setLocalRotation (doto (com.jme3.math.Quaternion.)
+                                           (.fromAngles 0 (float (/ Math/PI 2)) 0)))
+                      (.setLocalTranslation 0 (float 0.0305) 0))
+                s (sim/simulation (doto (Node. "rod-creature") (.attachChild rod))
+                                  {:floor {:height 0 :friction 1.0} :observe #{:segments}})]]
+    (try
+      (let [obs (vec (repeatedly 600 #(sim/step! s)))
+            turn (apply max (for [o (subvec obs 540), {w :angular-velocity} (vals (:segments o))]
+                              (Math/sqrt (reduce + (map #(* (double %) (double %)) w)))))
+            y (double (second (:position (first (vals (:segments (peek obs)))))))]
+        (testing (str "a cylinder of " sides " sides")
+          (is (= 10.0 (sim/scale s)))
+          (is (< turn 0.05) (str "turning at " turn " rad/s in its tenth second"))
+          (is (< (Math/abs (- (/ y 0.03) 1.0)) 0.05) (str "its centre at " (/ y 0.03) " of its radius"))))
+      (finally (sim/destroy! s)))))
+
 (defn- scaled-run
   "The worm simulated at `scale` with one substep, no floor, its joint
   told to bend to 0.5 rad for 30 steps, then pushed with a third of
