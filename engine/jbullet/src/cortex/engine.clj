@@ -460,7 +460,6 @@
       (.setAngularUpperLimit j (Vector3f. (float t) (float y) (float z))))
     j))
 
-
 (def ^:private ^java.util.Map limit-rows
   "Each joint given rows of cortex's own (`limit-rows!`, `spring-joint`;
   weakly held) -> [sequence [constraint ...]], the sequence the order
