@@ -114,8 +114,9 @@
     (try (sim/check-solver! (:solver s))
          (catch clojure.lang.ExceptionInfo e
            (fail! index s :solver (ex-message e) e)))
-    (when-not (or (= :auto scale) (and (finite? scale) (pos? (double scale))))
-      (fail! index s :scale (str "must be :auto or a positive number, not " (pr-str scale))))
+    (try (sim/check-scale! scale)
+         (catch clojure.lang.ExceptionInfo e
+           (fail! index s :scale (ex-message e) e)))
     (when-not (or (nil? trajectory) (pos-int? trajectory))
       (fail! index s :trajectory (str "must be nil or a positive whole number of steps, not "
                                       (pr-str trajectory))))

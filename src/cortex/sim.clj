@@ -9,7 +9,7 @@
   simulation and steps it, for windows and cortex.render's recording),
   `steps`, `sim-time`, `last-efforts` (the torques the last step applied),
   `solver` (its solver iterations and substeps), `check-solver!`,
-  `destroy!`."
+  `check-scale!`, `destroy!`."
   (:require [clojure.string :as str]
             [cortex.body :as body]
             [cortex.engine :as engine]
@@ -121,6 +121,16 @@
                   " It takes " (str/join ", " (sort known)))
              (assoc data :key k :known (vec (sort known))))))
 
+(defn check-scale!
+  "Check a simulation's :scale option `scale` (:auto, or a positive
+  number); an ex-info that says what it must be otherwise."
+  [scale]
+  (when-not (or (= :auto scale) (and (util/finite? scale) (pos? (double scale))))
+    (throw (ex-info (str ":scale must be :auto or a positive number, not " (pr-str scale)
+                         " (how many times its size the creature is simulated)")
+                    {:scale scale})))
+  scale)
+
 (defn check-solver!
   "Check a simulation's :solver option `solver` (nil, or a map of
   `solver-keys` to whole numbers from 1 to `solver-bounds`, :projection
@@ -149,10 +159,7 @@
   (doseq [k (keys opts) :when (not (option-keys k))]
     (throw (unknown-key-error "a simulation" k option-keys {:options opts})))
   (check-solver! solver)
-  (when-not (or (= :auto scale) (and (util/finite? scale) (pos? (double scale))))
-    (throw (ex-info (str ":scale must be :auto or a positive number (how many times its size"
-                         " the creature is simulated), not " (pr-str scale))
-                    opts)))
+  (check-scale! scale)
   (when-not (and (sequential? gravity) (= 3 (count gravity)) (every? util/finite? gravity))
     (throw (ex-info (str ":gravity must be [x y z], finite numbers, not " (pr-str gravity)) opts)))
   (when-not (or (nil? floor) (util/finite? floor)

@@ -178,6 +178,7 @@
      (if parallel?
        {:width (- (double right) (double left)) :height (- (double top) (double bottom))}
        {:x (angle left right) :y (angle bottom top)}))))
+
 (defn scaled-spec
   "Eye `spec` in a scene `k` times the creature's size (a simulation's
   :scale): its near and far distances, and an orthographic camera's
