@@ -81,20 +81,20 @@
 (defn- vec3-of [^Vector3f v] [(.x v) (.y v) (.z v)])
 
 (defn- segment-report
-  [^Geometry g planned]
+  "The report of segment `g`, planned as `planned` at its size, built
+  `k` times larger."
+  [^Geometry g planned ^double k]
   (let [^RigidBodyControl c (.getControl g RigidBodyControl)
         shape (:shape planned)
         hull? (or (nil? shape) (= :hull (:type shape)))
         points (when hull? (engine/hull-points (.getCollisionShape c)))
+        hull-volume (if points (/ (engine/hull-volume points) (* k k k)) 0.0)
         {:keys [source centre moments]} (:inertia planned)]
     (cond-> {:name (segment-name g) :mass (double (.getMass c))
              :shape (if shape (:type shape) :hull)
-             :volume (if hull?
-                       (if points (engine/hull-volume points) 0.0)
-                       (segment/shape-volume shape))
+             :volume (if hull? hull-volume (segment/shape-volume shape))
              :mass-properties source}
-      hull? (assoc :hull-points (count points)
-                   :hull-volume (if points (engine/hull-volume points) 0.0))
+      hull? (assoc :hull-points (count points) :hull-volume hull-volume)
       (= :compound (:type shape)) (assoc :pieces (mapv #(get-in % [:shape :type]) (:children shape)))
       (= :mesh source) (assoc :centre-of-mass (vec3-of (util/jme-to-blender (util/vec3 centre)))
                               :principal-moments (vec moments)))))
@@ -118,16 +118,22 @@
   :message ...}], :tolerance (the ambiguity window the doubts used)},
   and for a creature with eyes :eyes
   [{:name :kind :segment :distance :resolution :fov ...}] (see
-  cortex.vision/eyes!)."
+  cortex.vision/eyes!). A creature a simulation built larger (see
+  cortex.sim/simulation) is reported at its own size."
   [^Node creature]
-  (let [{:keys [plan built]} (build-record creature)
+  (let [{:keys [built plan-at-size scale] :as record} (build-record creature)
+        ;; built larger by a simulation: reported at its size (above)
+        plan (or plan-at-size (:plan record))
         {:keys [warnings tolerance eyes]} plan
         planned (into {} (map (fn [s b] [(:geom b) s]) (:segments plan) (:segments built)))]
     (cond-> {:creature (.getName creature)
              :segments (vec (for [g (segments creature)
                                   :when (.getControl ^Geometry g RigidBodyControl)]
-                              (segment-report g (get planned g))))
-             :joints (mapv joint-report (:joints built))
+                              (segment-report g (get planned g) (double (or scale 1.0)))))
+             :joints (if plan-at-size
+                       (mapv #(joint-report (merge %1 (select-keys %2 [:pivot :distances])))
+                             (:joints built) (:joints plan))
+                       (mapv joint-report (:joints built)))
              :warnings warnings
              :tolerance tolerance}
       (seq eyes) (assoc :eyes (mapv vision/eye-report eyes)))))

@@ -45,13 +45,15 @@
 (defn plan-of
   "What the writers write for `x`: a plan (see cortex.plan), its missing
   moments filled in (see `with-bullet-moments`); a creature Node, the
-  plan its body was built from, or, before it has a body, its plan now.
+  plan its body was built from (at its own size, for a creature a
+  simulation built larger: see cortex.sim), or, before it has a body,
+  its plan now.
   An ex-info names a segment the plan holds no body for (a plan drawn up
   after body!, whose segments are only kept), or whose mass is not a
   number of kilograms."
   [x]
   (let [p (if (instance? Node x)
-            (or (:plan (segment/record x)) (plan/plan x))
+            (let [r (segment/record x)] (or (:plan-at-size r) (:plan r) (plan/plan x)))
             x)]
     (doseq [{:keys [id kept? shape]} (:segments p)
             :when (or kept? (nil? shape))]

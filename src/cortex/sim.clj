@@ -14,6 +14,7 @@
             [cortex.body :as body]
             [cortex.engine :as engine]
             [cortex.muscle :as muscle]
+            [cortex.plan :as plan]
             [cortex.projection :as projection]
             [cortex.proprioception :as p]
             [cortex.segment :as segment]
@@ -234,14 +235,17 @@
   "Give `creature` its body `k` times its size: its Node scaled by k
   about the world's origin, its segments' sleeping thresholds times
   sqrt k (the same rest as a creature of the larger size), k kept in
-  its record (see `built-scale`)."
+  its record (see `built-scale`), and the plan body! would build of it
+  at its size (:plan-at-size: what cortex.body/report and
+  cortex.export write)."
   [^Node creature ^double k]
-  (.setLocalScale creature (.mult (.getLocalScale creature) (float k)))
-  (.setLocalTranslation creature (.mult (.getLocalTranslation creature) (float k)))
-  (body/body! creature {:sleeping-thresholds
-                        (mapv #(* (Math/sqrt k) (double %))
-                              (:sleeping-thresholds segment/default-options))})
-  (segment/record! creature (assoc (segment/record creature) :scale k)))
+  (let [at-size (plan/plan creature {:physics-tab? false})]
+    (.setLocalScale creature (.mult (.getLocalScale creature) (float k)))
+    (.setLocalTranslation creature (.mult (.getLocalTranslation creature) (float k)))
+    (body/body! creature {:sleeping-thresholds
+                          (mapv #(* (Math/sqrt k) (double %))
+                                (:sleeping-thresholds segment/default-options))})
+    (segment/record! creature (assoc (segment/record creature) :scale k :plan-at-size at-size))))
 
 (defn- built-scale
   "How many times its size an earlier simulation built `creature`, or

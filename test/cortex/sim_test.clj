@@ -491,6 +491,27 @@
     ;; to a float's precision: the joint's pivots are floats, ten times larger
     (is (< (apart muscle muscle-10) (* 1e-6 (apply max (numbers muscle)))) (str muscle " " muscle-10))))
 
+(deftest a-creature-simulated-larger-is-reported-at-its-size
+  (doseq [[f k] [["flat-strangers/flat-hexagon-paddle" 10.0] ["strangers/worm-eye-0.01" 100.0]]
+          :let [load #(util/load-blender-model (str "test/fixtures/" f ".blend"))
+                twin (body/report (body/body! (load)))
+                c (load)
+                s (sim/simulation c {:observe #{}})
+                larger (body/report c)
+                hulls (fn [r] (filter #(= :hull (:shape %)) (:segments r)))
+                hull-free (fn [r] (update r :segments (partial mapv #(cond-> % (= :hull (:shape %))
+                                                                      (dissoc :volume :hull-volume)))))]]
+    (sim/destroy! s)
+    (testing f
+      (is (= k (sim/scale s)))
+      (is (seq (:joints twin)))
+      (is (= (hull-free twin) (hull-free larger)) "all but the hulls' volumes exactly as the twin's")
+      (is (= (count (hulls twin)) (count (hulls larger))))
+      (doseq [[a b] (map vector (hulls twin) (hulls larger))
+              :let [va (double (:hull-volume a)) vb (double (:hull-volume b))]]
+        (is (<= (Math/abs (- va vb)) (* 1e-3 (max va 1e-9))) (str (:name a) ": " va " " vb))
+        (is (= [va vb] [(double (:volume a)) (double (:volume b))]) (:name a))))))
+
 (deftest a-scale-is-refused-where-it-cannot-be-kept
   (let [bodied (body/body! (util/load-blender-model f/worm-path))
         fails (fn [opts c] (try (sim/destroy! (sim/simulation c opts)) nil
