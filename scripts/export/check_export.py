@@ -264,6 +264,23 @@ def sim_warnings(d):
             for i in range(len(d.warning)) if d.warning[i].number > 0}
 
 
+def run_frames(m, d, seconds):
+    """Step `d` for `seconds`, reading it every 1/60 s (see `frames`):
+    (the centre of mass's heights, where it is across the floor, the
+    fastest body's speeds, a frame's length)."""
+    heights, across, speeds = [], [], []
+    prev = d.xipos.copy()
+    sub, frame, n = frames(m, seconds)
+    for i in range(n):
+        for _ in range(sub):
+            mujoco.mj_step(m, d)
+        heights.append(com_height(m, d.xipos))
+        across.append(com_across(m, d.xipos))
+        speeds.append(float(np.linalg.norm(d.xipos[1:] - prev[1:], axis=1).max() / frame))
+        prev[:] = d.xipos
+    return heights, across, speeds, frame
+
+
 def mj_drop(path, seconds, held=False, up_body=None):
     """The drop of the MJCF at `path` for `seconds`: the centre of mass
     height every 1/60 s, the fastest body over the last half second and
@@ -282,16 +299,7 @@ def mj_drop(path, seconds, held=False, up_body=None):
         m.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_ACTUATION
     d = mujoco.MjData(m)
     mujoco.mj_forward(m, d)
-    heights, across, speeds = [], [], []
-    prev = d.xipos.copy()
-    sub, frame, n = frames(m, seconds)
-    for i in range(n):
-        for _ in range(sub):
-            mujoco.mj_step(m, d)
-        heights.append(com_height(m, d.xipos))
-        across.append(com_across(m, d.xipos))
-        speeds.append(float(np.linalg.norm(d.xipos[1:] - prev[1:], axis=1).max() / frame))
-        prev[:] = d.xipos
+    heights, across, speeds, frame = run_frames(m, d, seconds)
     out = {"heights": heights, "across": across, "rest_speed": max(speeds[-30:]),
            "step": m.opt.timestep, "frame": frame, "warnings": sim_warnings(d)}
     if up_body:

@@ -43,10 +43,15 @@
 
 (def earth-gravity (Vector3f. 0 -9.81 0))
 
-(def gravity-control
-  "G turns gravity on, U turns it off."
-  {"key-g" (fn [w pressed?] (when pressed? (world/set-gravity w earth-gravity)))
+(defn gravity-keys
+  "G turns gravity `g` on, U turns it off."
+  [^Vector3f g]
+  {"key-g" (fn [w pressed?] (when pressed? (world/set-gravity w g)))
    "key-u" (fn [w pressed?] (when pressed? (world/set-gravity w Vector3f/ZERO)))})
+
+(def gravity-control
+  "G turns the Earth's gravity on, U turns it off."
+  (gravity-keys earth-gravity))
 
 (def debug-control
   "H shows the physics: collision shapes and joints."
@@ -146,41 +151,49 @@
   under its lowest point, lit, with the camera framing the creature and
   the floor beneath it, gravity on and the step fixed at 1/60 s.
   `update-fn` runs every frame, as for cortex.world/world. Keys: those
-  of the demo worlds."
-  [^Node creature drop update-fn]
-  (let [[lo hi] (bounds creature)
-        top (- (second lo) drop)
-        floor (stage-floor lo hi top)]
-    (world/world (util/nodify [creature floor])
-                 (merge world/standard-debug-controls gravity-control debug-control)
-                 (fn [^SimpleApplication w]
-                   (.setMaterial floor (lit-material w (ColorRGBA. 0.55 0.6 0.5 1)))
-                   (light! w)
-                   (frame! w (assoc lo 1 top) hi)
-                   (.setTimer w (RatchetTimer. 60))
-                   (world/set-gravity w earth-gravity)
-                   (world/speed-up w)
-                   (util/display-dilated-time w (.getTimer w)))
-                 update-fn)))
+  of the demo worlds. `opts`: :gravity (default `earth-gravity`), and
+  :setup, a function of the world run last as it starts."
+  ([creature drop update-fn] (stage creature drop update-fn {}))
+  ([^Node creature drop update-fn opts]
+   (let [{:keys [gravity setup] :or {gravity earth-gravity}} opts
+         [lo hi] (bounds creature)
+         top (- (second lo) drop)
+         floor (stage-floor lo hi top)]
+     (world/world (util/nodify [creature floor])
+                  (merge world/standard-debug-controls (gravity-keys gravity) debug-control)
+                  (fn [^SimpleApplication w]
+                    (.setMaterial floor (lit-material w (ColorRGBA. 0.55 0.6 0.5 1)))
+                    (light! w)
+                    (frame! w (assoc lo 1 top) hi)
+                    (.setTimer w (RatchetTimer. 60))
+                    (world/set-gravity w gravity)
+                    (world/speed-up w)
+                    (util/display-dilated-time w (.getTimer w))
+                    (when setup (setup w)))
+                  update-fn))))
 
 (defn watch
   "A function of [world tpf] for cortex.world/world's update that
-  measures `creature` (built by body!) every frame, and an atom holding
-  {:frames n :max-gap g :still-since frame-or-nil}: [update-fn atom]."
-  [creature]
-  (let [joints (mapv :physics-joint (body/joint-records creature))
-        controls (mapv #(.getControl ^Geometry % RigidBodyControl) (body/segments creature))
-        seen (atom {:frames 0 :max-gap 0.0 :still-since nil})]
-    [(fn [_ _]
-       (let [gap (reduce max 0.0 (map body/joint-gap joints))
-             fastest (reduce max 0.0 (map #(.length (.getLinearVelocity ^RigidBodyControl %))
-                                          controls))]
-         (swap! seen (fn [{:keys [frames] :as s}]
-                       (-> s
-                           (assoc :frames (inc frames))
-                           (update :max-gap max gap)
-                           (update :still-since #(if (< fastest 0.05) (or % (inc frames)) nil)))))))
-     seen]))
+  measures `creature` (built by body!, `k` times its size: 1 by
+  default) every frame, and an atom holding {:frames n :max-gap g
+  :still-since frame-or-nil}: [update-fn atom]."
+  ([creature] (watch creature 1.0))
+  ([creature k]
+   (let [k (double k)
+         still (* 0.05 (Math/sqrt k))
+         joints (mapv :physics-joint (body/joint-records creature))
+         controls (mapv #(.getControl ^Geometry % RigidBodyControl) (body/segments creature))
+         seen (atom {:frames 0 :max-gap 0.0 :still-since nil})]
+     [(fn [_ _]
+        (let [gap (/ (reduce max 0.0 (map body/joint-gap joints)) k)
+              fastest (reduce max 0.0 (map #(.length (.getLinearVelocity ^RigidBodyControl %))
+                                           controls))]
+          (swap! seen (fn [{:keys [frames] :as s}]
+                        (-> s
+                            (assoc :frames (inc frames))
+                            (update :max-gap max gap)
+                            (update :still-since #(if (< fastest still) (or % (inc frames)) nil)))))))
+      seen])))
 
 (defn watched
   "What `watch` saw, in words."

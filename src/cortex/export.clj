@@ -5,7 +5,8 @@
 
   Entry points: `mjcf` (the MJCF document of a plan, a string), `urdf`
   (the URDF document), `meshes` (the OBJ files both name, file name to
-  text), `write!` (documents and meshes into files), `tree` (which
+  text), `scene` (a MuJoCo scene putting the MJCF on a floor), `write!`
+  (documents and meshes into files), `tree` (which
   segment hangs from which), `joint-dofs` (how each joint is written),
   `muscles` (each joint's strength and gains, from the plan),
   `cylinders-as-meshes` (a plan for MJX). The
@@ -288,25 +289,93 @@
        (tab-mjcf plan {:root root :cone cone})
        (marker-mjcf plan root share cone)))))
 
+(defn- lowest-of
+  "The height (jME's y) of the lowest point of `shape` (data) whose
+  centre is at height `y` and whose rotation matrix is `R` (jME's
+  axes): a hull's lowest point, a primitive's support straight down."
+  ^double [{:keys [type points half-extents radius height axis children]} ^double y R]
+  (let [up (nth R 1)                    ; the world's up in the shape's axes
+        along (fn [k] (Math/abs (double (nth up (or k 1)))))
+        across (fn [k] (Math/sqrt (max 0.0 (- 1.0 (* (along k) (along k))))))]
+    (case type
+      (:hull :mesh) (reduce min Double/POSITIVE_INFINITY (map #(+ y (double (second (mv R %)))) points))
+      :box (- y (reduce + (map #(* (Math/abs (double %1)) (double %2)) up half-extents)))
+      :sphere (- y (double radius))
+      :capsule (- y (* (along axis) (/ (double height) 2)) (double radius))
+      :cylinder (let [k (or axis 1)]
+                  (- y (* (along k) (double (nth half-extents k)))
+                     (* (across k) (double (nth half-extents (if (zero? k) 1 0))))))
+      :cone (let [h (/ (double height) 2) tilt (* (double (nth up (or axis 1))) h)]
+              ;; Bullet's cone: its apex at +h along its axis, its base at -h
+              (min (+ y tilt) (- y tilt (* (across axis) (double radius)))))
+      :compound (reduce min Double/POSITIVE_INFINITY
+                        (for [{s :shape p :position q :rotation} children
+                              :let [Rq (mm R (quat->matrix q))]]
+                          (lowest-of s (+ y (double (second (mv R p)))) Rq))))))
+
+(defn- lowest
+  "The height (MuJoCo's z, jME's y) of the lowest point of `plan`'s
+  segments."
+  ^double [plan]
+  (reduce min Double/POSITIVE_INFINITY
+          (for [{:keys [position rotation shape]} (:segments plan)]
+            (lowest-of shape (double (second position)) (quat->matrix rotation)))))
+
+(defn ^:api scene
+  "A MuJoCo scene (MJCF, a string) in which the document `file` (the
+  file name `write!` gave the MJCF of `x`, a plan or a creature: see
+  `plan-of`) stands on a floor at its lowest point, under a light."
+  [x ^String file]
+  (let [plan (plan-of x)
+        z (lowest plan)]
+    (xml [:mujoco {:model (str (:creature plan) " on a floor")}
+          (str "written by cortex.export: " file " on a floor at its lowest point (" z
+               " m); see org/export.org")
+          [:include {:file file}]
+          [:asset
+           [:texture {:name "scene-sky" :type "skybox" :builtin "gradient" :width 512 :height 3072
+                      :rgb1 "0.62 0.76 0.92" :rgb2 "0.3 0.45 0.65"}]
+           [:texture {:name "scene-floor" :type "2d" :builtin "checker" :width 256 :height 256
+                      :rgb1 "0.55 0.6 0.5" :rgb2 "0.45 0.5 0.42"}]
+           [:material {:name "scene-floor" :texture "scene-floor" :texrepeat "8 8"
+                       :texuniform "true"}]]
+          [:worldbody
+           [:light {:name "scene-light" :pos "0 0 10" :dir "0 0 -1" :directional "true"}]
+           [:geom {:name "scene-floor" :type "plane" :size "0 0 0.05" :pos (str "0 0 " z)
+                   :material "scene-floor"}]]])))
+
+(defn- scene-file
+  "The scene's file beside the MJCF `file`: its name with -scene added."
+  ^java.io.File [^java.io.File file]
+  (io/file (.getParentFile (.getAbsoluteFile file))
+           (str (str/replace (.getName file) #"\.xml$" "") "-scene.xml")))
+
 (defn ^:api write!
   "Write `plan` as MJCF to `mjcf-path` and/or URDF to `urdf-path` (nil
-  for neither), each with its meshes beside it. `opts` as for `mjcf`.
-  Returns the files written."
+  for neither), each with its meshes beside it. `opts` as for `mjcf`,
+  and :scene (true: also `scene`'s document beside the MJCF, named as
+  it is with -scene added). Returns the files written."
   ([plan mjcf-path urdf-path] (write! plan mjcf-path urdf-path {}))
   ([x mjcf-path urdf-path opts]
    (let [plan (plan-of x)
-         ms (meshes plan)]
-     (vec (for [[path doc] [[mjcf-path mjcf] [urdf-path urdf]]
-                :when path
-                f (let [file (io/file path)
-                        dir (or (.getParentFile (.getAbsoluteFile file)) (io/file "."))]
-                    (io/make-parents file)
-                    (spit file (doc plan opts))
-                    (cons (str file) (for [[n t] ms]
-                                       (let [mf (io/file dir n)]
-                                         (spit mf t)
-                                         (str mf)))))]
-            f)))))
+         ms (meshes plan)
+         written (vec (for [[path doc] [[mjcf-path mjcf] [urdf-path urdf]]
+                            :when path
+                            f (let [file (io/file path)
+                                    dir (or (.getParentFile (.getAbsoluteFile file)) (io/file "."))]
+                                (io/make-parents file)
+                                (spit file (doc plan (dissoc opts :scene)))
+                                (cons (str file) (for [[n t] ms]
+                                                   (let [mf (io/file dir n)]
+                                                     (spit mf t)
+                                                     (str mf)))))]
+                        f))]
+     (if (and mjcf-path (:scene opts))
+       (let [file (io/file mjcf-path)
+             sf (scene-file file)]
+         (spit sf (scene plan (.getName file)))
+         (conj written (str sf)))
+       written))))
 
 (def mesh-cylinder-sides
   "The sides of the prism `cylinders-as-meshes` writes for a cylinder."

@@ -15,6 +15,7 @@
             [cortex.render :as render]
             [cortex.demo :as demo]
             [cortex.sight :as sight]
+            [cortex.sim :as sim]
             [cortex.blender :as blender]
             [cortex.util :as util]
             [cortex.world :as world])
@@ -52,14 +53,21 @@
 
 (defn demo-world
   "A world in which `creature` (a node loaded from Blender, given its
-  body here) falls onto a floor under gravity; see cortex.demo/stage.
-  Returns [world watched], where watched is an atom of what
-  cortex.demo/watch measures."
+  body here as a simulation at `scale` would give it, :auto by default:
+  see cortex.sim/scaled-body!) falls onto a floor under gravity; see
+  cortex.demo/stage. Returns [world watched], where watched is an atom
+  of what cortex.demo/watch measures."
   ([creature] (demo-world creature false))
-  ([creature file?]
-   (let [built (body/body! creature)
-         [watch seen] (demo/watch built)]
-     [(demo/stage built (drop-height built file?) watch) seen])))
+  ([creature file?] (demo-world creature file? :auto))
+  ([creature file? scale]
+   (let [k (sim/scaled-body! creature {:scale scale})
+         [watch seen] (demo/watch creature k)]
+     [(demo/stage creature (drop-height creature file?) watch
+                  (if (not= k 1.0)
+                    {:gravity (.mult ^Vector3f demo/earth-gravity (float k))
+                     :setup #(sim/scaled-substeps! (world/physics-space %) k)}
+                    {}))
+      seen])))
 
 (defn- table
   "Rows (maps) as a text table with the columns `cols` ([key title])."
@@ -132,7 +140,7 @@
    [nil "--headless" "draw offscreen even when there is a display"]
    [nil "--window" "open a window (needs a display)"]
    [nil "--report" "with a FILE.blend: print what body! builds of it, and stop"]
-   [nil "--mjcf OUT.xml" "with a FILE.blend: write it as MuJoCo's MJCF, meshes beside it, and stop (see org/export.org)"]
+   [nil "--mjcf OUT.xml" "with a FILE.blend: write it as MuJoCo's MJCF, meshes and OUT-scene.xml (it on a floor) beside it, and stop (see org/export.org)"]
    [nil "--urdf OUT.urdf" "with a FILE.blend: write it as URDF, meshes beside it, and stop (with --mjcf too)"]
    [nil "--cone-strength HOW" "with --mjcf: per-axis (default) bounds each of a cone's three servos by its strength, inscribed by strength / sqrt 3"
     :parse-fn keyword
@@ -141,6 +149,10 @@
     :parse-fn keyword
     :validate [#{:pyramidal :elliptic} "must be pyramidal or elliptic"]]
    [nil "--eyes" "record what the creature's eyes see under the world (the worm with eyes unless a FILE is given)"]
+   [nil "--scale K" "build and show the creature K times its size: auto (the default) is 1, or more for a creature under 1 across (see org/sim.org)"
+    :parse-fn #(if (= "auto" %) :auto (parse-double %))
+    :validate [#(or (= :auto %) (and % (< 0 % Double/POSITIVE_INFINITY)))
+               "must be auto or a positive number"]]
    ["-h" "--help" "say how to use lein run"]])
 
 (defn- usage
@@ -161,12 +173,12 @@
   `display?`: a map with :action :help, :error (with :message), :report
   (with :file), or :window or :offscreen with :creature, :frames, :out,
   :size, :record? (whether to record frames), :fallback? (whether to
-  draw offscreen when the window cannot open) and, for a creature from
-  a file, :file."
+  draw offscreen when the window cannot open), for a creature from a
+  file :file, and when given :eyes? and :scale (see `demo-world`)."
   [args display?]
   (let [{:keys [options errors summary arguments]} (cli/parse-opts args cli-options)
         {:keys [creature seconds out resolution headless window help report eyes mjcf urdf
-                cone-strength friction-cone]} options
+                cone-strength friction-cone scale]} options
         [file & extra] arguments
         creature (cond file (str/replace (.getName (io/file file)) #"\.blend$" "")
                        (and eyes (= creature "worm")) "worm-eyes"
@@ -175,6 +187,8 @@
       help {:action :help :message (usage summary)}
       errors {:action :error :message (str/join "\n" (conj errors "(lein run --help for help)"))}
       (seq extra) {:action :error :message (str "one creature file at a time, not " (pr-str (vec arguments)))}
+      (and scale (or report mjcf urdf))
+      {:action :error :message "--scale goes with showing a creature, not with --report, --mjcf or --urdf"}
       (and report (not file)) {:action :error :message "--report needs a FILE.blend"}
       report {:action :report :file file}
       (and (or mjcf urdf) (not file)) {:action :error :message "--mjcf and --urdf need a FILE.blend"}
@@ -196,7 +210,8 @@
                :fallback? (not window)
                :size resolution}
         file (assoc :file file)
-        eyes (assoc :eyes? true)))))
+        eyes (assoc :eyes? true)
+        scale (assoc :scale scale)))))
 
 (defn- still!
   "Copy the last recorded frame in `dir` to NAME.png beside it; return
@@ -248,7 +263,7 @@
   report printed."
   [{:keys [file] :as plan}]
   (let [creature (load-planned plan)
-        [w seen] (demo-world creature (some? file))]
+        [w seen] (demo-world creature (some? file) (get plan :scale :auto))]
     (when file
       (println (report-text (body/report creature))))
     (when (:eyes? plan)
@@ -260,7 +275,7 @@
   creature's eyes see under each frame (see cortex.sight)."
   [w creature {:keys [out eyes?]} opts]
   (if eyes?
-    (sight/record-with-eyes! w creature out opts)
+    (sight/record-with-eyes! w creature out (assoc opts :scale (sim/built-scale creature)))
     (render/record! w out opts)))
 
 (defn- show-offscreen!
@@ -314,7 +329,8 @@
                    :export (do (doseq [f (export/write! (cortex.plan/plan (blender/load-blender-model (:file p))
                                                                            {:strict? false})
                                                         (:mjcf p) (:urdf p)
-                                                        (select-keys p [:cone-strength :friction-cone]))]
+                                                        (assoc (select-keys p [:cone-strength :friction-cone])
+                                                               :scene true))]
                                  (println "wrote" f))
                                0)
                    :window (do (show-window! p) 0)

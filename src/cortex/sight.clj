@@ -401,6 +401,14 @@
                                                  (ex-info (str "eyes: " (ex-message state)) {} state))))
         :else {:context context :tasks tasks :failure failure :state state}))))
 
+(defn- scaled-choice
+  "The eyes of `creature` that `eyes` asks for (see `choose`), each with
+  its clipping distances `scale` times farther: built that many times
+  its size (cortex.vision/scaled-spec)."
+  [creature eyes scale]
+  (mapv (fn [[record opts]] [(update record :spec vision/scaled-spec scale) opts])
+        (choose creature eyes)))
+
 (defn open!
   "Eyes for a simulation of `creature` whose scene is `root`, as `eyes`
   asks (see `choose`): a GL context on its own thread, the mirror and
@@ -411,9 +419,7 @@
   creature's units."
   ([creature root eyes] (open! creature root eyes 1.0))
   ([creature ^Node root eyes scale]
-   (let [chosen (mapv (fn [[record opts]] [(update record :spec vision/scaled-spec scale) opts])
-                      (choose creature eyes))
-         plan (layout chosen)]
+   (let [plan (layout (scaled-choice creature eyes scale))]
      (open-context!
       (fn [^RenderManager rm]
         (let [am (util/asset-manager {:new true})
@@ -438,22 +444,25 @@
 
 (defn eyes-state
   "Attach to `world` an app state that draws the eyes of `creature`
-  (`eyes` as for a simulation) every frame in the world's own context.
+  (`eyes` as for a simulation) every frame in the world's own context,
+  the creature built `scale` times its size (1 by default; see `open!`).
   Returns an atom holding the last frame's images (see `see!`)."
-  [^SimpleApplication world creature eyes]
-  (let [plan (layout (choose creature eyes))
-        seen (atom nil)
-        state (atom nil)]
-    (.attach (.getStateManager world)
-             (proxy [AbstractAppState] []
-               (render [^RenderManager rm]
-                 (let [{:keys [mirror rig]}
-                       (or @state
-                           (reset! state (let [m (mirror (.getRootNode world)
-                                                         (util/asset-manager {:new true}))]
-                                           {:mirror m :rig (rig plan (:node m))})))]
-                   (reset! seen (look! rig mirror rm))))))
-    seen))
+  ([world creature eyes] (eyes-state world creature eyes 1.0))
+  ([^SimpleApplication world creature eyes scale]
+   (let [plan (layout (scaled-choice creature eyes scale))
+         seen (atom nil)
+         state (atom nil)]
+     (.attach (.getStateManager world)
+              (proxy [AbstractAppState] []
+                (render [^RenderManager rm]
+                  (let [{:keys [mirror rig]}
+                        (or @state
+                            (reset! state (let [m (mirror (.getRootNode world)
+                                                          (util/asset-manager {:new true}))]
+                                            {:mirror m
+                                             :rig (assoc (rig plan (:node m)) :scale (double scale))})))]
+                    (reset! seen (look! rig mirror rm))))))
+     seen)))
 
 (defn eye-image
   "An eye's RGB bytes (see `see!`) as a TYPE_INT_RGB BufferedImage."
@@ -505,10 +514,11 @@
 (defn record-with-eyes!
   "Record `world` to folder `dir` as cortex.render/record! does, each
   frame with what the eyes of `creature` saw under it (see `with-eyes`).
-  `opts` as for record!, and :eyes (default true). Call before the world
-  starts."
+  `opts` as for record!, :eyes (default true), and :scale (how many
+  times its size the creature was built, 1 by default). Call before
+  the world starts."
   ([world creature dir] (record-with-eyes! world creature dir {}))
   ([world creature dir opts]
-   (let [seen (eyes-state world creature (get opts :eyes true))]
-     (render/record! world dir (assoc (dissoc opts :eyes)
+   (let [seen (eyes-state world creature (get opts :eyes true) (get opts :scale 1.0))]
+     (render/record! world dir (assoc (dissoc opts :eyes :scale)
                                       :decorate #(if @seen (with-eyes % @seen) %))))))

@@ -9,7 +9,8 @@
   simulation and steps it, for windows and cortex.render's recording),
   `steps`, `sim-time`, `last-efforts` (the torques the last step applied),
   `solver` (its solver iterations and substeps), `check-solver!`,
-  `check-scale!`, `destroy!`."
+  `check-scale!`, `destroy!`; for a scene of one's own, `scaled-body!`,
+  `built-scale` and `scaled-substeps!`."
   (:require [clojure.string :as str]
             [cortex.body :as body]
             [cortex.engine :as engine]
@@ -247,11 +248,11 @@
                                 (:sleeping-thresholds segment/default-options))})
     (segment/record! creature (assoc (segment/record creature) :scale k :plan-at-size at-size))))
 
-(defn- built-scale
-  "How many times its size an earlier simulation built `creature`, or
-  nil."
-  [^Node creature]
-  (:scale (segment/record creature)))
+(defn ^:api built-scale
+  "How many times its size `creature` was built, by a simulation or
+  `scaled-body!`: k, or 1 (at its size, or without its body yet)."
+  ^double [^Node creature]
+  (double (or (:scale (segment/record creature)) 1.0)))
 
 
 (def small-creature
@@ -296,7 +297,7 @@
                                  {:creature (.getName creature) :scale scale})))
         log #(.warning (Logger/getLogger "cortex.sim")
                        (str (segment/label creature) " is " (format "%.3g" size) " across: " %))
-        built (built-scale creature)
+        built (:scale (segment/record creature))
         bodied? (has-body? creature)]
     (cond
       built (cond (not (or (= :auto scale) (== (double built) (double scale))))
@@ -314,13 +315,31 @@
         (cond (== 1.0 k) 1.0
               bodied? (do (log (str "at this size Bullet's fixed tolerances keep it from resting;"
                                     " it has its body already, so it is simulated at its size:"
-                                    " give it to simulation before body! to have it simulated "
+                                    " give it to simulation before body!, or build it with"
+                                    " cortex.sim/scaled-body!, to have it simulated "
                                     (long k) " times larger"))
                           1.0)
               :else (do (log (str "it is simulated " (long k) " times larger (:scale " (long k)
                                   "), under " (long k) " times the gravity, and observed in its"
                                   " own units; give :scale 1 to simulate it at its size"))
                         k))))))
+
+(defn ^:api scaled-body!
+  "Give `creature` its body as a simulation of it with `opts` (only
+  :scale is read; :auto by default) would, and return the scale it is
+  built at: for a creature without its body under `small-creature`
+  across, k times its size (see `auto-scale`), else 1; a creature that
+  has its body keeps it. Its record then keeps k and its plan at its
+  size (cortex.body/report and cortex.export read that). A scene of
+  one's own holding it owes it k times the gravity and
+  `scaled-substeps!`."
+  (^double [creature] (scaled-body! creature {}))
+  (^double [^Node creature opts]
+   (let [k (choose-scale creature (merge {:scale :auto} opts))]
+     (cond (has-body? creature) nil
+           (== 1.0 k) (body/body! creature)
+           :else (scale-up! creature k))
+     k)))
 
 (defn- scaled-floor
   "Floor spec `floor` (see `floor`) with its height `k` times as high."
@@ -329,21 +348,25 @@
         (map? floor) (update floor :height #(* k (double %)))
         :else (* k (double floor))))
 
-(defn- scaled-substeps!
+(defn ^:api scaled-substeps!
   "The substeps of a world of bodies built `k` times their size that
-  would take `n` at that size, at time scale `t`: n times ceil(sqrt k)
-  when k > 1 (at most the :substeps of `solver-bounds`), the larger
-  world's step being then the larger creature's; set on `space` when
-  more than n."
-  ^long [^PhysicsSpace space ^double k t ^long n]
-  (let [m (if (> k 1.0)
-            (min (long (:substeps solver-bounds))
-                 (* n (long (Math/ceil (- (Math/sqrt k) 0.001)))))
-            n)]
-    (when (> m n)
-      (.setAccuracy space (float (world/substep-length t m)))
-      (.setMaxSubSteps space (int m)))
-    m))
+  would take `n` at that size (by default those its thinnest body asks
+  for, cortex.world/step-thin-bodies!), at time scale `t` (default 1):
+  n times ceil(sqrt k) when k > 1 (at most the :substeps of
+  `solver-bounds`), the larger world's step being then the larger
+  creature's; set on `space` when more than n. For a scene of one's
+  own holding a creature built by `scaled-body!`."
+  (^long [^PhysicsSpace space k] (scaled-substeps! space k 1.0 (world/step-thin-bodies! space)))
+  (^long [^PhysicsSpace space k t n]
+   (let [k (double k) n (long n)
+         m (if (> k 1.0)
+             (min (long (:substeps solver-bounds))
+                  (* n (long (Math/ceil (- (Math/sqrt k) 0.001)))))
+             n)]
+     (when (> m n)
+       (.setAccuracy space (float (world/substep-length t m)))
+       (.setMaxSubSteps space (int m)))
+     m)))
 
 (defn- unscaled-segment
   "A segment's state read in a world `k` times larger, in the creature's
@@ -383,10 +406,7 @@
    (let [{:keys [gravity floor observe scale] :as opts}
          (merge {:gravity [0 -9.81 0] :floor nil :observe all-observations :scale :auto} opts)
          _ (check-options! opts)
-         k (choose-scale creature opts)
-         _ (cond (has-body? creature) nil
-                 (== 1.0 k) (body/body! creature)
-                 :else (scale-up! creature k))
+         k (scaled-body! creature opts)
          tab (tab-settings creature)
          floor-geom (when floor (cortex.sim/floor (scaled-floor floor k)))
          root (util/nodify "simulation" (cond-> [creature] floor-geom (conj floor-geom)))

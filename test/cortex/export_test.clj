@@ -1153,6 +1153,42 @@
           (is (= {} warnings)))))
     (skip "cortex.export-test/the-export-is-a-gymnasium-environment")))
 
+(deftest a-scene-puts-the-creature-on-a-floor
+  (if-let [py (python)]
+    (let [dir (str (Files/createTempDirectory "cortex-scene" (make-array FileAttribute 0)))]
+      (doseq [[f path] (assoc fixtures "paddle" "test/fixtures/flat-strangers/flat-hexagon-paddle.blend")
+              :when (not= f "humanoid")
+              :let [c (util/load-blender-model path)
+                    p (plan/plan c)
+                    scene (str (io/file dir (str f "-scene.xml")))
+                    written (ex/write! p (str (io/file dir (str f ".xml"))) nil {:scene true})
+                    {:keys [exit out err]} (shell/sh py "scripts/export/scene_check.py" scene "3")
+                    {:strs [error warnings floor gap heights rest_speed sim_warnings]}
+                    (when (zero? exit) ((requiring-resolve 'cortex.blender-test/read-json) out))]]
+        (testing f
+          (is (zero? exit) err)
+          (is (= scene (peek written)) "the scene is written last, beside the MJCF")
+          (is (nil? error))
+          (is (empty? warnings))
+          (is (= {} sim_warnings))
+          (is (< (Math/abs (double gap)) 1e-4) (str "the floor " gap " m from the creature"))
+          (println (format "%s in its scene: the floor at %.4f m, %.2g m from the creature" f
+                           (double floor) (double gap)))
+          (when (stays-put f)
+            (let [_ (.move c 0 (float (- (double floor))) 0)
+                  ours (cortex-drop c p nil 3.0 nil)
+                  sz (size p)]
+              (doseq [[label i] [["after 1 s" 59] ["at the end" (dec (count heights))]]
+                      :let [a (- (double (nth heights i)) (double floor))
+                            b (double (nth (:heights ours) i))]]
+                (println (format "  %s, limp, %s: centre of mass %.4f m above the floor in MuJoCo, %.4f in cortex (%s)"
+                                 f label a b (name engine/name)))
+                (is (< (Math/abs (- a b)) (* 0.05 sz))
+                    (str label ": " a " m above the floor in MuJoCo, " b " in cortex")))
+              (is (< (double rest_speed) 0.1) "MuJoCo's comes to rest")
+              (is (< (double (:rest-speed ours)) 0.1) "cortex's comes to rest"))))))
+    (skip "cortex.export-test/a-scene-puts-the-creature-on-a-floor")))
+
 (def ^:private stranger-files
   "The strangers' creatures exported at every size they were saved at."
   (vec (for [n ["worm-eye" "hand" "humanoid"] k ["" "-0.01" "-100"]]

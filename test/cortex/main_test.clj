@@ -2,11 +2,15 @@
 (ns cortex.main-test
   (:require [clojure.test :refer [deftest is testing]]
             [cortex.body :as body]
+            [cortex.demo :as demo]
             [cortex.main :as main]
             [cortex.render :as render]
             [cortex.blender]
+            [cortex.sim :as sim]
             [cortex.util :as util])
-  (:import (com.jme3.math Vector3f)
+  (:import (com.jme3.bullet.control RigidBodyControl)
+           (com.jme3.math Vector3f)
+           (com.jme3.scene Geometry)
            (com.jme3.renderer Camera)
            (java.awt.image BufferedImage)
            (javax.imageio ImageIO)))
@@ -66,7 +70,12 @@
                  (:message (main/plan ["q.blend" "--mjcf" "q.xml" "--friction-cone" "round"] false))))
     (is (re-find #"--friction-cone goes with --mjcf"
                  (:message (main/plan ["q.blend" "--urdf" "q.urdf" "--friction-cone" "elliptic"] false))))
-    (is (re-find #"one creature file at a time" (:message (main/plan ["a.blend" "b.blend"] false)))))
+    (is (re-find #"one creature file at a time" (:message (main/plan ["a.blend" "b.blend"] false))))
+    (is (= [10.0 :auto nil] (map #(:scale (main/plan ["q.blend" "--scale" %] false)) ["10" "auto" "0"])))
+    (is (re-find #"--scale -1\": must be auto or a positive number"
+                 (:message (main/plan ["q.blend" "--scale" "-1"] false))))
+    (is (re-find #"--scale goes with showing a creature"
+                 (:message (main/plan ["q.blend" "--report" "--scale" "10"] false)))))
   (testing "the report as tables"
     (let [c (body/body! (util/load-blender-model "test/fixtures/designer/quadruped.blend"))
           text (main/report-text (body/report c))
@@ -165,6 +174,27 @@
         (is (> y80 (+ y1 20))))
       (is (not= (vec (.getRGB ^BufferedImage (:image (get @seen 1)) 0 0 320 240 nil 0 320))
                 (vec (.getRGB ^BufferedImage (:image (get @seen 80)) 0 0 320 240 nil 0 320)))))))
+
+(defn- printing
+  "[value printed]: what `f` returns and what it prints."
+  [f]
+  (let [out (java.io.StringWriter.)]
+    [(binding [*out* out] (f)) (str out)]))
+
+(deftest a-small-creature-from-a-file-is-shown-larger
+  (let [f "test/fixtures/strangers/worm-eye-0.01.blend"
+        twin (main/report-text (body/report (body/body! (util/load-blender-model f))))
+        [[w seen c] printed] (printing #(#'main/planned-world (main/plan [f "-s" "3" "-r" "160x120"] false)))
+        [[_ _ at-size]] (printing #(#'main/planned-world (main/plan [f "--scale" "1"] false)))]
+    (is (= [100.0 1.0] [(sim/built-scale c) (sim/built-scale at-size)]) "--scale 1: at its size")
+    (is (= (str twin "\n") printed) "its report, at its size")
+    (render/run-offscreen! w 180 {:size [160 120]})
+    (let [fastest (apply max (for [g (body/segments c)
+                                   :let [^RigidBodyControl rb (.getControl ^Geometry g RigidBodyControl)]
+                                   :when rb]
+                               (/ (.length (.getLinearVelocity rb)) 100.0)))]
+      (is (< fastest 0.001) (str "still moving at " fastest " m/s")))
+    (is (re-find #"at rest from" (demo/watched @seen)))))
 
 (deftest lein-run-with-eyes
   (let [plan (main/plan ["--eyes" "-s" "0.2" "-r" "160x120"] false)
