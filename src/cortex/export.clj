@@ -289,37 +289,38 @@
        (tab-mjcf plan {:root root :cone cone})
        (marker-mjcf plan root share cone)))))
 
-(defn- lowest-of
-  "The height (jME's y) of the lowest point of `shape` (data) whose
-  centre is at height `y` and whose rotation matrix is `R` (jME's
-  axes): a hull's lowest point, a primitive's support straight down."
-  ^double [{:keys [type points half-extents radius height axis children]} ^double y R]
-  (let [up (nth R 1)                    ; the world's up in the shape's axes
+(defn- support-down
+  "The height (jME's y) of the lowest point of primitive `piece` (see
+  cortex.export.geometry/pieces) whose centre is at height `y` and whose
+  rotation matrix is `R` (jME's axes): its support straight down."
+  ^double [{:keys [type half-extents radius height axis]} ^double y R]
+  (let [up (nth R 1)                    ; the world's up in the piece's axes
         along (fn [k] (Math/abs (double (nth up (or k 1)))))
         across (fn [k] (Math/sqrt (max 0.0 (- 1.0 (* (along k) (along k))))))]
     (case type
-      (:hull :mesh) (reduce min Double/POSITIVE_INFINITY (map #(+ y (double (second (mv R %)))) points))
       :box (- y (reduce + (map #(* (Math/abs (double %1)) (double %2)) up half-extents)))
       :sphere (- y (double radius))
       :capsule (- y (* (along axis) (/ (double height) 2)) (double radius))
       :cylinder (let [k (or axis 1)]
                   (- y (* (along k) (double (nth half-extents k)))
-                     (* (across k) (double (nth half-extents (if (zero? k) 1 0))))))
-      :cone (let [h (/ (double height) 2) tilt (* (double (nth up (or axis 1))) h)]
-              ;; Bullet's cone: its apex at +h along its axis, its base at -h
-              (min (+ y tilt) (- y tilt (* (across axis) (double radius)))))
-      :compound (reduce min Double/POSITIVE_INFINITY
-                        (for [{s :shape p :position q :rotation} children
-                              :let [Rq (mm R (quat->matrix q))]]
-                          (lowest-of s (+ y (double (second (mv R p)))) Rq))))))
+                     (* (across k) (double (nth half-extents (if (zero? k) 1 0)))))))))
 
 (defn- lowest
   "The height (MuJoCo's z, jME's y) of the lowest point of `plan`'s
-  segments."
+  geoms as the MJCF writes them (a mesh's points, a flat piece's plate
+  included), or 0 for a plan with no segment."
   ^double [plan]
-  (reduce min Double/POSITIVE_INFINITY
-          (for [{:keys [position rotation shape]} (:segments plan)]
-            (lowest-of shape (double (second position)) (quat->matrix rotation)))))
+  (let [meshes (mesh-files plan)
+        low (reduce min Double/POSITIVE_INFINITY
+                    (for [{:keys [id position rotation shape]} (:segments plan)
+                          :let [R (quat->matrix rotation) y (double (second position))]
+                          [k {:keys [type pos rot] :as piece}] (map-indexed vector (pieces shape))]
+                      (if (= :mesh type)
+                        (let [Rz (z-up-rotation R)]
+                          (reduce min (map #(+ y (double (nth (mv Rz %) 2)))
+                                           (:points (meshes [id k])))))
+                        (support-down piece (+ y (double (second (mv R pos)))) (mm R rot)))))]
+    (if (Double/isInfinite low) 0.0 low)))
 
 (defn ^:api scene
   "A MuJoCo scene (MJCF, a string) in which the document `file` (the

@@ -289,16 +289,16 @@
   earlier simulation built it at, else :scale as given, else (:auto)
   `auto-scale` of its size when it has no body yet; a warning says what
   :auto chose, or why a small creature is left at its size. An ex-info
-  naming the creature for a scale that cannot be kept."
-  ^double [^Node creature {:keys [scale]}]
-  (let [size (creature-size creature)
+  naming the creature for a scale that cannot be kept. `bodied?`:
+  whether it has its body (`has-body?`)."
+  ^double [^Node creature {:keys [scale]} bodied?]
+  (let [size (delay (creature-size creature))   ; measured for :auto alone
         refuse (fn [why]
                  (throw (ex-info (str (segment/label creature) ", :scale " scale ": " why)
                                  {:creature (.getName creature) :scale scale})))
         log #(.warning (Logger/getLogger "cortex.sim")
-                       (str (segment/label creature) " is " (format "%.3g" size) " across: " %))
-        built (:scale (segment/record creature))
-        bodied? (has-body? creature)]
+                       (str (segment/label creature) " is " (format "%.3g" @size) " across: " %))
+        built (:scale (segment/record creature))]
     (cond
       built (cond (not (or (= :auto scale) (== (double built) (double scale))))
                   (refuse (str "an earlier simulation built its body " built " times larger;"
@@ -311,7 +311,7 @@
                                           " leave :scale out")))
                            k)
       :else
-      (let [k (auto-scale size)]
+      (let [k (auto-scale @size)]
         (cond (== 1.0 k) 1.0
               bodied? (do (log (str "at this size Bullet's fixed tolerances keep it from resting;"
                                     " it has its body already, so it is simulated at its size:"
@@ -335,8 +335,9 @@
   `scaled-substeps!`."
   (^double [creature] (scaled-body! creature {}))
   (^double [^Node creature opts]
-   (let [k (choose-scale creature (merge {:scale :auto} opts))]
-     (cond (has-body? creature) nil
+   (let [bodied? (has-body? creature)
+         k (choose-scale creature (merge {:scale :auto} opts) bodied?)]
+     (cond bodied? nil
            (== 1.0 k) (body/body! creature)
            :else (scale-up! creature k))
      k)))

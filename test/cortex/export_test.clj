@@ -1156,7 +1156,9 @@
 (deftest a-scene-puts-the-creature-on-a-floor
   (if-let [py (python)]
     (let [dir (str (Files/createTempDirectory "cortex-scene" (make-array FileAttribute 0)))]
-      (doseq [[f path] (assoc fixtures "paddle" "test/fixtures/flat-strangers/flat-hexagon-paddle.blend")
+      (doseq [[f path] (assoc fixtures
+                              "paddle" "test/fixtures/flat-strangers/flat-hexagon-paddle.blend"
+                              "walker" "test/fixtures/flat-strangers/leaf-walker.blend")
               :when (not= f "humanoid")
               :let [c (util/load-blender-model path)
                     p (plan/plan c)

@@ -338,6 +338,16 @@
       (let [b (bytes-per-step path)]
         (is (< b 1024.0) (str path ": " b " bytes a step"))))))
 
+(defn- lift!
+  "Move creature `c` so that its lowest point is 5% of its height above
+  y = 0; its height."
+  ^double [^Node c]
+  (let [^com.jme3.bounding.BoundingBox b (do (.updateGeometricState c) (.getWorldBound c))
+        lo (- (.y (.getCenter b)) (.getYExtent b))
+        hi (+ (.y (.getCenter b)) (.getYExtent b))]
+    (.move c 0 (float (+ (- (double lo)) (* 0.05 (- (double hi) (double lo))))) 0)
+    (- (double hi) (double lo))))
+
 (defn- stranger-rest
   "The strangers' creature `f` dropped limp from 5% of its height onto a
   floor of friction 1, 10 s, simulated with `opts`: {:height (of the
@@ -349,17 +359,14 @@
   ([f k opts]
    (let [^Node c (doto ^Node (util/load-blender-model (str "test/fixtures/strangers/" f ".blend"))
                    (.setLocalScale (float k)))
-         ^com.jme3.bounding.BoundingBox b (do (.updateGeometricState c) (.getWorldBound c))
-         lo (- (.y (.getCenter b)) (.getYExtent b))
-         hi (+ (.y (.getCenter b)) (.getYExtent b))
-         _ (.move c 0 (float (+ (- (double lo)) (* 0.05 (- (double hi) (double lo))))) 0)
+         height (lift! c)
          s (sim/simulation c (merge {:floor {:height 0 :friction 1.0} :observe #{:segments :touch}}
                                     opts))]
      (try
        (let [obs (vec (repeatedly 600 #(sim/step! s)))
              speed (fn [v] (Math/sqrt (reduce + (map #(* (double %) (double %)) v))))
              segs (vals (:segments (peek obs)))]
-         {:height (- (double hi) (double lo))
+         {:height height
           :centre (/ (reduce + (map #(double (second (:position %))) segs)) (count segs))
           :fastest (apply max (for [o (subvec obs 540), {v :velocity} (vals (:segments o))] (speed v)))
           :weight (reduce + (map :impulse (vals (:touch (peek obs)))))
@@ -416,16 +423,13 @@
              "flat-strangers/flat-hexagon-paddle" "strangers/inverted_pendulum"]
           :let [drop (fn [scale]
                        (let [^Node c (util/load-blender-model (str "test/fixtures/" f ".blend"))
-                             ^com.jme3.bounding.BoundingBox b (do (.updateGeometricState c) (.getWorldBound c))
-                             lo (- (.y (.getCenter b)) (.getYExtent b))
-                             hi (+ (.y (.getCenter b)) (.getYExtent b))
-                             _ (.move c 0 (float (+ (- (double lo)) (* 0.05 (- (double hi) (double lo))))) 0)
+                             height (lift! c)
                              s (sim/simulation c {:floor {:height 0 :friction 1.0} :observe #{:segments}
                                                   :scale scale})]
                          (try
                            (let [obs (vec (repeatedly 600 #(sim/step! s)))
                                  ys (map #(double (second (:position %))) (vals (:segments (peek obs))))]
-                             {:scale (sim/scale s) :height (- (double hi) (double lo))
+                             {:scale (sim/scale s) :height height
                               :centre (/ (reduce + ys) (count ys))
                               :fastest (apply max (for [o (subvec obs 540), {v :velocity} (vals (:segments o))]
                                                     (Math/sqrt (reduce + (map #(* (double %) (double %)) v)))))})
