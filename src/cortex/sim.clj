@@ -329,10 +329,10 @@
   :scale is read; :auto by default) would, and return the scale it is
   built at: the one :scale gives, or for :auto, k for a creature
   without its body under `small-creature` across (see `auto-scale`),
-  else 1; a creature that has its body keeps it. Its record then keeps k and its plan at its
-  size (cortex.body/report and cortex.export read that). A scene of
-  one's own holding it owes it k times the gravity and
-  `scaled-substeps!`."
+  else 1; a creature that has its body keeps it. Its record then keeps
+  k and its plan at its size (cortex.body/report and cortex.export read
+  that). A scene of one's own holding it owes it k times the gravity
+  and `scaled-substeps!`."
   (^double [creature] (scaled-body! creature {}))
   (^double [^Node creature opts]
    (let [bodied? (has-body? creature)
