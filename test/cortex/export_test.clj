@@ -815,12 +815,6 @@
       (is (< apart (* 0.05 sz)) (str who ", " label ": " (pr-str a) " across the floor, cortex's "
                                      (pr-str b) ", size " sz)))))
 
-(def ^:private limp-by-chance
-  "[engine fixture]: a limp drop printed, not asserted, on that engine
-  (see the text: jBullet's limp humanoid lands deeper and is thrown
-  back up, and is higher than MuJoCo's after 1 s at every heading)."
-  #{[:jbullet "humanoid"]})
-
 (defn- drop-figures [who heights rest-speed]
   (format "%s: centre of mass %.3f m up after 1 s, %.3f m at the end, fastest segment then %.3f m/s"
           who (double (nth heights 59)) (double (peek (vec heights))) (double rest-speed)))
@@ -835,11 +829,6 @@
   that hold their pose, and the humanoid, whose cones can no longer
   rock it (see the text)."
   (conj holds-its-pose "humanoid"))
-
-(def ^:private jolts
-  "[engine fixture]: a held drop whose rest is printed, not asserted,
-  on that engine (see the text: jBullet's held hand's fingertips jolt)."
-  #{[:jbullet "hand"]})
 
 (defn- check-held
   "Fixture `f`'s held drop: cortex's centre of mass where MuJoCo's is,
@@ -866,9 +855,8 @@
     (when (holds-its-pose f)
       (is (< (double (mj-held "rest_speed")) 0.1)
           (str "MuJoCo's copy, held, still moving at " (mj-held "rest_speed") " m/s"))
-      (when-not (jolts [engine/name f])
-        (is (< (double (:rest-speed cortex-held)) 0.1)
-            (str "cortex's creature, held, still moving at " (:rest-speed cortex-held) " m/s"))))))
+      (is (< (double (:rest-speed cortex-held)) 0.1)
+          (str "cortex's creature, held, still moving at " (:rest-speed cortex-held) " m/s")))))
 
 (defn- check-bodies
   "MuJoCo compiled `plan`'s document without an error or a warning, and
@@ -928,22 +916,20 @@
         (is (< (Math/abs (- (double (nth angles k)) want)) 0.05)
             (str joint " " dof " to its " end ": " (nth angles k) ", cortex's limit " want)))
       (doseq [[who {:strs [heights rest_speed] :as d}] [["MuJoCo" drop] ["PyBullet" (get urdf "drop")]]
-              :let [chance? (limp-by-chance [engine/name f])
-                    alike? (and (settles-alike f) (not chance?))]]
-        (println (str f (cond chance? ", limp, printed only: " alike? ", limp: "
-                              :else ", limp, its end not yet alike: ")
+              :let [alike? (settles-alike f)]]
+        (println (str f (if alike? ", limp: " ", limp, its end not yet alike: ")
                       (drop-figures who heights rest_speed) "; "
                       (drop-figures "cortex" (:heights cortex) (:rest-speed cortex))))
         (testing who
           (check-across f (str who ", limp,") sz d cortex (stays-put f))
-          (doseq [[label i] (cond-> (if chance? [] [["after 1 s" 59]])
+          (doseq [[label i] (cond-> [["after 1 s" 59]]
                               alike? (conj ["at the end" (dec (count heights))]))]
             (is (< (Math/abs (- (double (nth heights i)) (nth (:heights cortex) i))) (* 0.05 sz))
                 (str label ": centre of mass " (nth heights i) " m up, cortex's "
                      (nth (:heights cortex) i) ", size " sz)))
           (when alike?
             (is (< rest_speed 0.1) (str "still moving at " rest_speed " m/s")))))
-      (when (and (settles-alike f) (not (limp-by-chance [engine/name f])))
+      (when (settles-alike f)
         (is (< (:rest-speed cortex) 0.1) (str "cortex still moving at " (:rest-speed cortex))))
       (check-held f sz cortex-held mj-held mj-inscribed)
       (check-random f random)

@@ -30,6 +30,8 @@ import javax.vecmath.Vector3f;
  * point appeared, warm started. Joints
  * are solved as jBullet solves them (their own solveConstraint), first
  * in each iteration, then contacts, then friction, in a fixed order.
+ * cortex's own worlds give each point a second friction row across the
+ * first (see org/engine.org).
  */
 public final class BlenderContactSolver extends ConstraintSolver {
     private static final class Row {
@@ -49,6 +51,21 @@ public final class BlenderContactSolver extends ConstraintSolver {
         float friction;
         ManifoldPoint cp;
         Row contact;
+        boolean second;
+    }
+
+    private final boolean twoFrictionRows;
+
+    /** Bullet 2.8's solving, one friction row a point, as Blender has it. */
+    public BlenderContactSolver() {
+        this(false);
+    }
+
+    /** With `twoFrictionRows`, each point gets a second friction row,
+     * across the first and the normal (cortex's own worlds; see
+     * org/engine.org). */
+    public BlenderContactSolver(boolean twoFrictionRows) {
+        this.twoFrictionRows = twoFrictionRows;
     }
 
     private final ArrayList<Row> contacts = new ArrayList<>();
@@ -91,6 +108,19 @@ public final class BlenderContactSolver extends ConstraintSolver {
         }
         r.jacInv = denom > 0f ? 1f / denom : 0f;
         r.jv0 = velocity(r);
+    }
+
+    /** A friction row of `contact` along `dir`, bounded by that point's
+     * friction, asking for no sliding along it; added to the rows. */
+    private Row friction(Row contact, RigidBody a, RigidBody b, Vector3f dir, Vector3f relA, Vector3f relB) {
+        Row f = new Row();
+        f.cp = contact.cp;
+        f.contact = contact;
+        f.friction = contact.cp.combinedFriction;
+        setup(f, a, b, dir, relA, relB);
+        f.rhs = -f.jv0 * f.jacInv;
+        frictions.add(f);
+        return f;
     }
 
     private void apply(Row r, float p) {
@@ -168,7 +198,8 @@ public final class BlenderContactSolver extends ConstraintSolver {
                 }
                 c.rhs = (positionalError + velocityError) * c.jacInv;
                 contacts.add(c);
-                // one friction row: along the sliding velocity, or across the normal
+                // a friction row along the sliding velocity, or across the normal;
+                // with two rows, a second across both
                 if (a != null) {
                     a.getVelocityInLocalPoint(relA, va);
                 } else {
@@ -188,13 +219,11 @@ public final class BlenderContactSolver extends ConstraintSolver {
                 } else {
                     TransformUtil.planeSpace1(cp.normalWorldOnB, dir1, dir2);
                 }
-                Row f = new Row();
-                f.cp = cp;
-                f.contact = c;
-                f.friction = cp.combinedFriction;
-                setup(f, a, b, dir1, relA, relB);
-                f.rhs = -f.jv0 * f.jacInv;
-                frictions.add(f);
+                friction(c, a, b, dir1, relA, relB);
+                if (twoFrictionRows) {
+                    dir2.cross(cp.normalWorldOnB, dir1);
+                    friction(c, a, b, dir2, relA, relB).second = true;
+                }
             }
         }
 
@@ -229,8 +258,12 @@ public final class BlenderContactSolver extends ConstraintSolver {
             c.cp.appliedImpulse = c.applied;
         }
         for (Row f : frictions) {
-            f.cp.appliedImpulseLateral1 = f.applied;
-            f.cp.appliedImpulseLateral2 = 0f;
+            if (f.second) {
+                f.cp.appliedImpulseLateral2 = f.applied;
+            } else {
+                f.cp.appliedImpulseLateral1 = f.applied;
+                f.cp.appliedImpulseLateral2 = 0f;
+            }
         }
         return 0f;
     }

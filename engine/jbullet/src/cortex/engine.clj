@@ -191,8 +191,9 @@
   started; jBullet's own shuffles them every step and gives each point
   two friction rows kept from step to step). Joints are solved as
   jBullet solves them, in the order they were added. Full-size pairs
-  keep jBullet's own algorithm and no contact slop, unlike cortex's own
-  worlds (see `configure-space!`). See the Physics tab chapter for what
+  keep jBullet's own algorithm, no contact slop, one friction row and
+  Bullet's ERP of 0.2, unlike cortex's own worlds (see
+  `configure-space!`). See the Physics tab chapter for what
   each changed."
   [^PhysicsSpace space]
   (let [^DynamicsWorld w (.getDynamicsWorld space)
@@ -203,8 +204,9 @@
     (.setConstraintSolver ^com.bulletphysics.dynamics.DiscreteDynamicsWorld w (cortex.BlenderContactSolver.))
     (set! (.solverMode (.getSolverInfo w))
           (int (bit-or SolverMode/SOLVER_USE_WARMSTARTING SolverMode/SOLVER_CACHE_FRIENDLY)))
-    ;; and Bullet 2.8's contacts have no slop
-    (set! (.linearSlop (.getSolverInfo w)) (float 0))))
+    ;; and Bullet 2.8's contacts have no slop, and Bullet's ERP of 0.2
+    (set! (.linearSlop (.getSolverInfo w)) (float 0))
+    (set! (.erp (.getSolverInfo w)) (float 0.2))))
 
 (defn- skew
   "The cross-product matrix of [x y z], rows."
@@ -567,22 +569,33 @@
   contacts\")."
   0.001)
 
+(def contact-erp
+  "The share of a contact point's depth that cortex's jBullet worlds push
+  out in a Bullet step: 0.1, half of Bullet's 0.2, which threw a limp
+  humanoid back up from its landing (see the text above)."
+  0.1)
+
 (defn configure-space!
   "Set `space` up as cortex simulates: its clock at 0 (`start-clock!`),
   jBullet's defaults but for `solver-iterations` and `contact-slop` (0
   once a body thinner than `thin` touches anything), the limit rows of
-  its joints (see `limit-rows!`) added before each step, and two convex
+  its joints (see `limit-rows!`) added before each step, two convex
   shapes of which one is thinner than `thin`, or neither has a margin of
   its own, meeting through cortex.SmallConvexAlgorithm (see the shapes
-  chapter)."
+  chapter), a box meeting the floor through cortex.FloorBoxes, and
+  contacts solved by cortex.BlenderContactSolver with two friction rows
+  a point, at `contact-erp`."
   ^PhysicsSpace [^PhysicsSpace space]
   (start-clock! space)
   (.setSolverNumIterations space (int solver-iterations))
-  (let [^DynamicsWorld w (.getDynamicsWorld space)]
+  (let [^DynamicsWorld w (.getDynamicsWorld space)
+        d ^com.bulletphysics.collision.dispatch.CollisionDispatcher (.getDispatcher w)]
     (set! (.linearSlop (.getSolverInfo w)) (float contact-slop))
-    (cortex.SmallConvexAlgorithm/register
-     ^com.bulletphysics.collision.dispatch.CollisionDispatcher (.getDispatcher w)
-     (float geometry/thin) true (.getSolverInfo w)))
+    (set! (.erp (.getSolverInfo w)) (float contact-erp))
+    (.setConstraintSolver ^com.bulletphysics.dynamics.DiscreteDynamicsWorld w
+                          (cortex.BlenderContactSolver. true))
+    (cortex.SmallConvexAlgorithm/register d (float geometry/thin) true (.getSolverInfo w))
+    (cortex.FloorBoxes/register d (float geometry/thin) (.getSolverInfo w)))
   (let [seen (java.util.IdentityHashMap.)
         placed (java.util.IdentityHashMap.)]
     (.addTickListener space (reify com.jme3.bullet.PhysicsTickListener
