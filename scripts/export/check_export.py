@@ -281,12 +281,21 @@ def run_frames(m, d, seconds):
     return heights, across, speeds, frame
 
 
-def mj_drop(path, seconds, held=False, up_body=None):
+def push_sideways(m, d, speed):
+    """Add `speed` (m/s) along the world's y to the whole creature: to the
+    linear velocity of its root's free joint, which every body below it
+    shares."""
+    free = [j for j in range(m.njnt) if m.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE]
+    d.qvel[m.jnt_dofadr[free[0]] + 1] += speed
+
+
+def mj_drop(path, seconds, held=False, up_body=None, push=None):
     """The drop of the MJCF at `path` for `seconds`: the centre of mass
     height every 1/60 s, the fastest body over the last half second and
     MuJoCo's warnings; with `up_body`, also "up", how far that body's own
     up (cortex's y, MuJoCo's z) points up at the end (1 upright, 0 on
-    its side)."""
+    its side); with `push` ({"at": s, "speed": m/s}), the creature pushed
+    sideways (`push_sideways`) that many seconds in."""
     m, err = load_on_floor(path)
     if m is None:
         return {"error": err}
@@ -299,7 +308,13 @@ def mj_drop(path, seconds, held=False, up_body=None):
         m.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_ACTUATION
     d = mujoco.MjData(m)
     mujoco.mj_forward(m, d)
-    heights, across, speeds, frame = run_frames(m, d, seconds)
+    if push:
+        heights, across, speeds, frame = run_frames(m, d, push["at"])
+        push_sideways(m, d, push["speed"])
+        more = run_frames(m, d, seconds - push["at"])
+        heights, across, speeds = heights + more[0], across + more[1], speeds + more[2]
+    else:
+        heights, across, speeds, frame = run_frames(m, d, seconds)
     out = {"heights": heights, "across": across, "rest_speed": max(speeds[-30:]),
            "step": m.opt.timestep, "frame": frame, "warnings": sim_warnings(d)}
     if up_body:
@@ -553,7 +568,7 @@ def main():
         m, err, warnings = load(f["mjcf"])
         r["mujoco"] = {"error": err, "warnings": warnings, "version": mujoco.__version__}
         if m is not None and f.get("limp_only"):
-            r["drop"] = mj_drop(f["mjcf"], f["seconds"], up_body=f.get("up_body"))
+            r["drop"] = mj_drop(f["mjcf"], f["seconds"], up_body=f.get("up_body"), push=f.get("push"))
         elif m is not None and f.get("compile_only"):
             r["bodies"] = bodies(m)
             if f.get("mjx_seconds"):

@@ -21,7 +21,8 @@
             [cortex.blender]
             [cortex.util :as util])
   (:import (com.jme3.bullet.control RigidBodyControl)
-           (com.jme3.scene Geometry)
+           (com.jme3.math Vector3f)
+           (com.jme3.scene Geometry Spatial)
            (java.nio.file Files)
            (java.nio.file.attribute FileAttribute)))
 
@@ -721,14 +722,18 @@
   with `up-segment`, also :up, how far that segment's own y points up
   at the end (1 upright, 0 on its side); :across, where the centre of
   mass is across the floor after each step, [x y] as MuJoCo has it;
-  :scale, what the simulation chose (see cortex.sim/simulation)."
+  :scale, what the simulation chose (see cortex.sim/simulation); with
+  `after`, :after, what (after simulation observations) returns at the
+  end, before the simulation is destroyed."
   ([creature plan actions] (cortex-drop creature plan actions seconds nil))
-  ([creature plan actions secs up-segment]
+  ([creature plan actions secs up-segment] (cortex-drop creature plan actions secs up-segment nil))
+  ([creature plan actions secs up-segment after]
    (let [mass (into {} (map (juxt :id :mass)) (:segments plan))
          total (reduce + (vals mass))
          s (sim/simulation creature {:floor {:height 0 :friction 1.0} :observe #{:segments}})
-         obs (try (vec (repeatedly (long (* 60 secs)) #(sim/step! s actions)))
-                  (finally (sim/destroy! s)))]
+         [obs later] (try (let [obs (vec (repeatedly (long (* 60 secs)) #(sim/step! s actions)))]
+                            [obs (when after (after s obs))])
+                          (finally (sim/destroy! s)))]
      (cond-> {:scale (sim/scale s)
               :heights (mapv (fn [o] (/ (reduce + (for [[n {[_ y] :position}] (:segments o)]
                                                    (* (mass n) y)))
@@ -744,7 +749,8 @@
                                            [_ {v :velocity}] (:segments o)]
                                        (Math/sqrt (reduce + (map * v v)))))}
        up-segment (assoc :up (get-in (geo/quat->matrix (get-in (peek obs) [:segments up-segment :rotation]))
-                                     [1 1]))))))
+                                     [1 1]))
+       after (assoc :after later)))))
 
 
 (defn- manifest-entry
@@ -998,6 +1004,61 @@
     (doseq [d drops]
       (is (< (double (d "rest_speed")) 0.1)))))
 
+(def ^:private pushes
+  "The unturned drops' sideways pushes (m/s), 5 s in, and the pose each
+  must end in, in MuJoCo with either cone (see the text)."
+  {0.05 :belly 0.4 :side})
+
+(defn- check-basin
+  "MuJoCo's unturned drops, pushed: `drops` {[cone push] drop}."
+  [drops]
+  (doseq [[[cone push] d] (sort drops)
+          :let [want (pushes push)]]
+    (println (format "four-legged, limp, unturned, %s cone, pushed sideways at %.2f m/s after 5 s: on its %s at %.3f m, fastest segment %.3f m/s"
+                     cone push (name (pose-of (d "up"))) (peek (d "heights")) (d "rest_speed")))
+    (testing (str cone " cone, pushed at " push " m/s")
+      (is (= want (pose-of (d "up"))))
+      (is (< (double (d "rest_speed")) 0.1)))))
+
+(defn- wake-and-push
+  "An `after` for cortex-drop: where `creature` (of `plan`, turned by
+  `heading`) lies on its belly, wake every segment for good, push it
+  at 0.05 m/s toward its own side and go on for 10 s: {:up :end}, where
+  its torso points and its centre of mass's height then; nil where it
+  lies on its side."
+  [creature plan heading]
+  (let [mass (into {} (map (juxt :id :mass)) (:segments plan))
+        total (reduce + (vals mass))
+        up (fn [o] (get-in (geo/quat->matrix (get-in o [:segments "torso" :rotation])) [1 1]))]
+    (fn [s obs]
+      (when (= :belly (pose-of (up (peek obs))))
+        (let [side (Vector3f. (float (Math/sin heading)) 0 (float (Math/cos heading)))]
+          (doseq [^RigidBodyControl rb (keep #(.getControl ^Spatial % RigidBodyControl)
+                                             (segment/segments creature))]
+            (.setSleepingThresholds rb 0 0)
+            (.activate rb)
+            (.setLinearVelocity rb (.add (.getLinearVelocity rb) (.mult side (float 0.05)))))
+          (let [o (last (repeatedly 600 #(sim/step! s nil)))]
+            {:up (up o)
+             :end (/ (reduce + (for [[n {[_ y] :position}] (:segments o)] (* (mass n) y))) total)}))))))
+
+(defn- check-woken
+  "At least half of cortex's belly rests in `runs` keep the belly when
+  woken and pushed (`wake-and-push`)."
+  [runs]
+  (let [woken (for [{:keys [heading cortex]} runs
+                    :when (:after cortex)]
+                (assoc (:after cortex) :heading heading :was (peek (:heights cortex))))]
+    (doseq [{:keys [heading up end was]} woken]
+      (println (format "four-legged, limp, turned %3d degrees, on its belly at %.3f m in cortex: woken and pushed sideways at 0.05 m/s, on its %s at %.3f m 10 s later"
+                       (Math/round (Math/toDegrees heading)) was (name (pose-of up)) end)))
+    (if (empty? woken)
+      (println (str "four-legged, limp: no drop ends on its belly on " (name engine/name)
+                    ", so no belly rest to wake"))
+      (is (<= (count woken) (* 2 (count (filter #(= :belly (pose-of (:up %))) woken))))
+          (str "belly rests that rolled when woken: "
+               (pr-str (map :heading (remove #(= :belly (pose-of (:up %))) woken))))))))
+
 (deftest the-four-legged-creature-rests-as-mujocos-does
   (if-let [py (python)]
     (let [dir (str (Files/createTempDirectory "cortex-turned" (make-array FileAttribute 0)))
@@ -1005,14 +1066,20 @@
           runs (vec (for [h headings]
                       (let [[c p] (placed "quadruped" h)
                             mj (str (io/file dir (format "quadruped-%.2f.xml" h)))
-                            ellipse (str (io/file dir (format "quadruped-%.2f-elliptic.xml" h)))]
+                            ellipse (str (io/file dir (format "quadruped-%.2f-elliptic.xml" h)))
+                            files [["" mj] [" elliptic" ellipse]]]
                         (ex/write! p mj nil)
                         (ex/write! p ellipse nil {:friction-cone :elliptic})
                         {:heading h :plan p
-                         :entries (for [[k path] [["" mj] [" elliptic" ellipse]]]
-                                    {:name (str h k) :mjcf path :seconds secs :limp_only true
-                                     :up_body "torso"})
-                         :cortex (cortex-drop c p nil secs "torso")})))
+                         :entries (concat
+                                   (for [[k path] files]
+                                     {:name (str h k) :mjcf path :seconds secs :limp_only true
+                                      :up_body "torso"})
+                                   (when (zero? (double h))
+                                     (for [[k path] files, v (keys pushes)]
+                                       {:name (str "pushed " v k) :mjcf path :seconds secs
+                                        :limp_only true :up_body "torso" :push {:at 5.0 :speed v}})))
+                         :cortex (cortex-drop c p nil secs "torso" (wake-and-push c p h))})))
           sz (size (:plan (first runs)))]
       (when-let [result (check-export py dir (mapcat :entries runs))]
         (doseq [{:keys [entries]} runs
@@ -1024,7 +1091,11 @@
                               {:heading heading :cortex cortex
                                :mujoco {:heights heights :rest-speed rest_speed :up up}}))
         (check-elliptic sz (for [{:keys [heading]} runs]
-                             (get-in result [(str heading " elliptic") "drop"])))))
+                             (get-in result [(str heading " elliptic") "drop"])))
+        (check-basin (into {} (for [[cone k] [["pyramidal" ""] ["elliptic" " elliptic"]]
+                                    v (keys pushes)]
+                                [[cone v] (get-in result [(str "pushed " v k) "drop"])])))
+        (check-woken runs)))
     (skip "cortex.export-test/the-four-legged-creature-rests-as-mujocos-does")))
 
 (defn- hanging-angle

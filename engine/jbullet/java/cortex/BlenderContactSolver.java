@@ -31,7 +31,8 @@ import javax.vecmath.Vector3f;
  * are solved as jBullet solves them (their own solveConstraint), first
  * in each iteration, then contacts, then friction, in a fixed order.
  * cortex's own worlds give each point a second friction row across the
- * first (see org/engine.org).
+ * first, and take back each step a share of what a point has slid while
+ * it held (see org/engine.org).
  */
 public final class BlenderContactSolver extends ConstraintSolver {
     private static final class Row {
@@ -52,9 +53,18 @@ public final class BlenderContactSolver extends ConstraintSolver {
         ManifoldPoint cp;
         Row contact;
         boolean second;
+        Slip slip;
+    }
+
+    /** What a contact point has slid across its normal while its friction
+     * held, and where it was (on body B) the step before. */
+    private static final class Slip {
+        final Vector3f at = new Vector3f();
+        final Vector3f slid = new Vector3f();
     }
 
     private final boolean twoFrictionRows;
+    private final float slipErp;
 
     /** Bullet 2.8's solving, one friction row a point, as Blender has it. */
     public BlenderContactSolver() {
@@ -65,7 +75,15 @@ public final class BlenderContactSolver extends ConstraintSolver {
      * across the first and the normal (cortex's own worlds; see
      * org/engine.org). */
     public BlenderContactSolver(boolean twoFrictionRows) {
+        this(twoFrictionRows, 0f);
+    }
+
+    /** With two friction rows and a `slipErp` over 0, each step's
+     * friction also takes back that share of what its point has slid
+     * while the friction held (cortex's own worlds). */
+    public BlenderContactSolver(boolean twoFrictionRows, float slipErp) {
         this.twoFrictionRows = twoFrictionRows;
+        this.slipErp = twoFrictionRows ? slipErp : 0f;
     }
 
     private final ArrayList<Row> contacts = new ArrayList<>();
@@ -198,6 +216,7 @@ public final class BlenderContactSolver extends ConstraintSolver {
                 }
                 c.rhs = (positionalError + velocityError) * c.jacInv;
                 contacts.add(c);
+
                 // a friction row along the sliding velocity, or across the normal;
                 // with two rows, a second across both
                 if (a != null) {
@@ -219,10 +238,13 @@ public final class BlenderContactSolver extends ConstraintSolver {
                 } else {
                     TransformUtil.planeSpace1(cp.normalWorldOnB, dir1, dir2);
                 }
-                friction(c, a, b, dir1, relA, relB);
+                if (slipErp > 0f) {
+                    c.slip = slipOf(cp, man, pb);
+                }
+                anchored(friction(c, a, b, dir1, relA, relB), dt);
                 if (twoFrictionRows) {
                     dir2.cross(cp.normalWorldOnB, dir1);
-                    friction(c, a, b, dir2, relA, relB).second = true;
+                    anchored(friction(c, a, b, dir2, relA, relB), dt).second = true;
                 }
             }
         }
@@ -257,6 +279,9 @@ public final class BlenderContactSolver extends ConstraintSolver {
         for (Row c : contacts) {
             c.cp.appliedImpulse = c.applied;
         }
+        if (slipErp > 0f) {
+            keepSlips(dt);
+        }
         for (Row f : frictions) {
             if (f.second) {
                 f.cp.appliedImpulseLateral2 = f.applied;
@@ -266,6 +291,63 @@ public final class BlenderContactSolver extends ConstraintSolver {
             }
         }
         return 0f;
+    }
+
+    private java.util.IdentityHashMap<ManifoldPoint, Slip> slips = new java.util.IdentityHashMap<>();
+    private java.util.IdentityHashMap<ManifoldPoint, Slip> nextSlips = new java.util.IdentityHashMap<>();
+
+    /** The slip of point `cp` of manifold `man`, at `pb` on body B: the
+     * step before's while the point is within the breaking threshold of
+     * where it was, else none; laid across the normal. */
+    private Slip slipOf(ManifoldPoint cp, PersistentManifold man, Vector3f pb) {
+        Slip s = slips.get(cp);
+        float near = man.getContactBreakingThreshold();
+        if (s != null) {
+            t1.sub(pb, s.at);
+        }
+        if (s == null || t1.lengthSquared() > near * near) {
+            s = new Slip();
+        }
+        s.at.set(pb);
+        s.slid.scaleAdd(-cp.normalWorldOnB.dot(s.slid), cp.normalWorldOnB, s.slid);
+        nextSlips.put(cp, s);
+        return s;
+    }
+
+    /** Friction row `f`, asked to take back slipErp of its point's slip
+     * along its direction in a step of `dt`. */
+    private Row anchored(Row f, float dt) {
+        Slip s = f.contact.slip;
+        if (s != null) {
+            f.rhs -= slipErp * f.n.dot(s.slid) / dt * f.jacInv;
+        }
+        return f;
+    }
+
+    /** After the iterations: a point that slid or let go forgets its
+     * slip; one that held adds its velocity across the normal times
+     * `dt`, row by row (the two rows span the plane). */
+    private void keepSlips(float dt) {
+        for (Row f : frictions) {
+            Row c = f.contact;
+            if (c.slip != null && (c.applied <= 0f || Math.abs(f.applied) >= 0.999f * f.friction * c.applied)) {
+                c.slip.slid.set(0f, 0f, 0f);
+                c.slip = null;
+            }
+        }
+        for (Row f : frictions) {
+            if (f.contact.slip != null) {
+                f.contact.slip.slid.scaleAdd(velocity(f) * dt, f.n, f.contact.slip.slid);
+            }
+        }
+    }
+
+    @Override
+    public void allSolved(ContactSolverInfo info, IDebugDraw debug) {
+        java.util.IdentityHashMap<ManifoldPoint, Slip> solved = slips;
+        slips = nextSlips;
+        nextSlips = solved;
+        nextSlips.clear();
     }
 
     @Override

@@ -584,7 +584,8 @@
   its own, meeting through cortex.SmallConvexAlgorithm (see the shapes
   chapter), a box meeting the floor through cortex.FloorBoxes, and
   contacts solved by cortex.BlenderContactSolver with two friction rows
-  a point, at `contact-erp`."
+  a point, at `contact-erp`, which also takes back that share of what a
+  point whose friction held has slid."
   ^PhysicsSpace [^PhysicsSpace space]
   (start-clock! space)
   (.setSolverNumIterations space (int solver-iterations))
@@ -593,7 +594,7 @@
     (set! (.linearSlop (.getSolverInfo w)) (float contact-slop))
     (set! (.erp (.getSolverInfo w)) (float contact-erp))
     (.setConstraintSolver ^com.bulletphysics.dynamics.DiscreteDynamicsWorld w
-                          (cortex.BlenderContactSolver. true))
+                          (cortex.BlenderContactSolver. true (float contact-erp)))
     (cortex.SmallConvexAlgorithm/register d (float geometry/thin) true (.getSolverInfo w))
     (cortex.FloorBoxes/register d (float geometry/thin) (.getSolverInfo w)))
   (let [seen (java.util.IdentityHashMap.)
