@@ -573,8 +573,10 @@
   (.setSolverNumIterations space (int solver-iterations))
   (doto ^SolverInfo (.getSolverInfo space)
     (.setSplitImpulseEnabled false)
-    ;; jBullet's solver mode: constraints in a (seeded) random order,
-    ;; warm starting (and SIMD, native Bullet's own default)
+    ;; constraints in a (seeded) random order and warm starting, the
+    ;; mode jBullet's own solver has (cortex's jBullet worlds solve
+    ;; contacts in a fixed order since), and SIMD, native Bullet's default;
+    ;; one friction direction a point (mode 277, two, is in notebook/limp)
     (.setMode (int (bit-or 1 4 256))))
   (.addCollisionGroupListener space collections-listener (int blender-group))
   (let [held (java.util.ArrayList.)]
