@@ -203,3 +203,45 @@
           (is (< (Math/abs (double v3)) 0.01) (str "the box slides at " v3 " m/s"))
           (is (< (Math/abs (- (/ (- v3 v1) 2.0) law)) 0.05)
               (str "acceleration " (/ (- v3 v1) 2.0) " m/s^2, the law's " law)))))))
+
+(defn- a-frame
+  "Two 1 kg legs 1 m long and 0.1 thick, hinged at the top, standing
+  2 mm above the floor at `deg` degrees each side of the vertical."
+  [deg]
+  (let [a (Math/toRadians deg)
+        lowest (+ (* 0.5 (Math/cos a)) (* 0.05 (Math/sin a)))
+        apex (+ 0.002 lowest (* 0.5 (Math/cos a)))
+        leg (fn [nm side]
+              (doto (f/segment-node nm [(* side 0.5 (Math/sin a)) (- apex (* 0.5 (Math/cos a))) 0]
+                                    [0.05 0.5 0.05] 1)
+                (.setLocalRotation (f/turned (* side a) [0 0 1]))))]
+    (util/nodify "a-frame"
+                 [(leg "left" -1) (leg "right" 1)
+                  (util/nodify "joints"
+                               [(f/joint-node "apex" [0 apex 0] Quaternion/IDENTITY
+                                              "{:type :hinge :limit [-1.5 1.5] :axis (Vector3f. 0 1 0)}")])])))
+
+(defn- a-frame-share
+  "The friction over the normal force an A-frame leg at `deg` degrees
+  needs at its foot."
+  [deg]
+  (let [a (Math/toRadians deg)]
+    (/ (- (* 0.5 (Math/sin a)) (* 0.05 (Math/cos a)))
+       (+ (Math/cos a) (* 0.05 (Math/sin a))))))
+
+(deftest an-a-frame-stands-as-coulomb-says
+  (doseq [deg [40 55]]
+    (let [s (sim/simulation (body/body! (a-frame deg) {:sleeping-thresholds [0 0]})
+                            {:observe #{:segments} :floor {:height 0 :friction 1.0}})
+          height (fn [steps] (get-in (last (repeatedly steps #(sim/step! s {}))) [:segments "left" :position 1]))
+          h1 (height 60)
+          h10 (height 540)
+          share (a-frame-share deg)]
+      (sim/destroy! s)
+      (println (format "an A-frame on %s at %d degrees (needs a friction of %.2f, has 0.5): a leg's centre %.4f m up at 1 s, %.4f at 10 s"
+                       engine/label deg share h1 h10))
+      (testing (str deg " degrees")
+        (cond
+          (< 0.5 share) (is (< h10 0.06) (str "the A still stands, a leg's centre " h10 " m up"))
+          (= :native engine/name) (println "  native Bullet's one friction direction a point may let it slide (see the text)")
+          :else (is (< (Math/abs (- h10 h1)) 1e-3) (str "the A sank from " h1 " to " h10)))))))

@@ -576,7 +576,8 @@
     ;; constraints in a (seeded) random order and warm starting, the
     ;; mode jBullet's own solver has (cortex's jBullet worlds solve
     ;; contacts in a fixed order since), and SIMD, native Bullet's default;
-    ;; one friction direction a point (mode 277, two, is in notebook/limp)
+    ;; one friction direction a point (two, mode 277, fail other checks:
+    ;; the physics-trust chapter's A-frame)
     (.setMode (int (bit-or 1 4 256))))
   (.addCollisionGroupListener space collections-listener (int blender-group))
   (let [held (java.util.ArrayList.)]
