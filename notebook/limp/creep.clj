@@ -1,3 +1,6 @@
+;; The friction test's box on a slope of 10, 20 and 25 degrees (its friction 0.5: 26.6 degrees), the
+;; slope turned 0, 30 and 45 degrees about the vertical: how far it moves from 1 s to 11 s, sleeping off.
+;; bin/lein with-profile +test run -m clojure.main notebook/limp/creep.clj (add +native for native Bullet)
 (require '[cortex.body :as body] '[cortex.sim :as sim] '[cortex.joint-fixtures :as f] '[cortex.engine :as engine])
 (defn run [deg az]
  (let [c (body/body! (f/chain 1 0.2) {:sleeping-thresholds [0 0]})

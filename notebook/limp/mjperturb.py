@@ -1,3 +1,6 @@
+# The limp four-legged creature's unturned MJCF (written by turn.clj WRITE=1), settled 5 s in MuJoCo, then
+# pushed sideways as a whole or tipped, with either friction cone: where it is at 30 s.
+#   target/python/bin/python notebook/limp/mjperturb.py /tmp/q/q-0.00.xml
 import sys, numpy as np, mujoco
 sys.path.insert(0, "scripts/export")
 import check_export as ce
