@@ -308,13 +308,11 @@ def mj_drop(path, seconds, held=False, up_body=None, push=None):
         m.opt.disableflags |= mujoco.mjtDisableBit.mjDSBL_ACTUATION
     d = mujoco.MjData(m)
     mujoco.mj_forward(m, d)
+    heights, across, speeds, frame = run_frames(m, d, push["at"] if push else seconds)
     if push:
-        heights, across, speeds, frame = run_frames(m, d, push["at"])
         push_sideways(m, d, push["speed"])
         more = run_frames(m, d, seconds - push["at"])
         heights, across, speeds = heights + more[0], across + more[1], speeds + more[2]
-    else:
-        heights, across, speeds, frame = run_frames(m, d, seconds)
     out = {"heights": heights, "across": across, "rest_speed": max(speeds[-30:]),
            "step": m.opt.timestep, "frame": frame, "warnings": sim_warnings(d)}
     if up_body:

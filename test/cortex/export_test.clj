@@ -715,6 +715,20 @@
   (into {} (for [{:keys [name type]} (:joints plan)]
              [name {:target (if (= type :hinge) 0.0 [0.0 0.0 0.0])}])))
 
+(defn- com-height
+  "A function of an observation: the height of the centre of mass of
+  `plan`'s segments in it."
+  [plan]
+  (let [mass (into {} (map (juxt :id :mass)) (:segments plan))
+        total (reduce + (vals mass))]
+    (fn [o] (/ (reduce + (for [[n {[_ y] :position}] (:segments o)] (* (mass n) y))) total))))
+
+(defn- up-of
+  "How far segment `id`'s own y points up in observation `o` (1
+  upright, 0 on its side)."
+  [o id]
+  (get-in (geo/quat->matrix (get-in o [:segments id :rotation])) [1 1]))
+
 (defn- cortex-drop
   "Heights of `creature`'s centre of mass after each 1/60 s step, and
   its fastest segment over the last half second; its muscles sent
@@ -735,10 +749,7 @@
                             [obs (when after (after s obs))])
                           (finally (sim/destroy! s)))]
      (cond-> {:scale (sim/scale s)
-              :heights (mapv (fn [o] (/ (reduce + (for [[n {[_ y] :position}] (:segments o)]
-                                                   (* (mass n) y)))
-                                        total))
-                             obs)
+              :heights (mapv (com-height plan) obs)
               ;; across the floor, as MuJoCo has it (Z up): jME's x and -z
               :across (mapv (fn [o] (let [[x _ z] (reduce (fn [acc [n {p :position}]]
                                                            (mapv + acc (map #(* (mass n) %) p)))
@@ -748,8 +759,7 @@
               :rest-speed (apply max (for [o (subvec obs (- (count obs) 30))
                                            [_ {v :velocity}] (:segments o)]
                                        (Math/sqrt (reduce + (map * v v)))))}
-       up-segment (assoc :up (get-in (geo/quat->matrix (get-in (peek obs) [:segments up-segment :rotation]))
-                                     [1 1]))
+       up-segment (assoc :up (up-of (peek obs) up-segment))
        after (assoc :after later)))))
 
 
@@ -1027,9 +1037,8 @@
   its torso points and its centre of mass's height then; nil where it
   lies on its side."
   [creature plan heading]
-  (let [mass (into {} (map (juxt :id :mass)) (:segments plan))
-        total (reduce + (vals mass))
-        up (fn [o] (get-in (geo/quat->matrix (get-in o [:segments "torso" :rotation])) [1 1]))]
+  (let [height (com-height plan)
+        up #(up-of % "torso")]
     (fn [s obs]
       (when (= :belly (pose-of (up (peek obs))))
         (let [side (Vector3f. (float (Math/sin heading)) 0 (float (Math/cos heading)))]
@@ -1039,8 +1048,7 @@
             (.activate rb)
             (.setLinearVelocity rb (.add (.getLinearVelocity rb) (.mult side (float 0.05)))))
           (let [o (last (repeatedly 600 #(sim/step! s nil)))]
-            {:up (up o)
-             :end (/ (reduce + (for [[n {[_ y] :position}] (:segments o)] (* (mass n) y))) total)}))))))
+            {:up (up o) :end (height o)}))))))
 
 (defn- check-woken
   "At least half of cortex's belly rests in `runs` keep the belly when
