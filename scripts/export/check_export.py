@@ -67,7 +67,9 @@ OUT.json, by fixture name:
   ctrlrange every 1/60 s (a learner's first exploration), three seeds:
   {"unlimited": actuators without a ctrlrange, "runs": [{"warnings",
   "fastest" (the fastest joint speed, rad/s or m/s)}]}.
-- "urdf": check_urdf's exit code and output; PyBullet's link masses; and the
+- "urdf": check_urdf's exit code and output; PyBullet's link masses, and
+  their centres of mass and inertias as it loaded them ({link: {"com",
+  "inertia"}}, the world's axes, `inertial`); and the
   same drop in PyBullet (1/60 s step in four substeps, floor friction 1:
   Bullet multiplies).
 - "tab_limits" (a Physics-tab creature's): the drop again, and over its
@@ -471,6 +473,20 @@ def track(path, times):
     return out
 
 
+def inertial(pb, c, body, i):
+    """Link `i` of PyBullet's `body` as loaded, in the world's axes: its
+    centre of mass ("com") and its inertia about it ("inertia", 3 x 3),
+    turned from the principal axes PyBullet keeps (the base's pose is
+    its centre of mass's)."""
+    if i == -1:
+        pos, orn = pb.getBasePositionAndOrientation(body, physicsClientId=c)
+    else:
+        pos, orn = pb.getLinkState(body, i, computeForwardKinematics=1, physicsClientId=c)[:2]
+    r = np.array(pb.getMatrixFromQuaternion(orn)).reshape(3, 3)
+    moments = pb.getDynamicsInfo(body, i, physicsClientId=c)[2]
+    return {"com": [float(v) for v in pos], "inertia": (r @ np.diag(moments) @ r.T).tolist()}
+
+
 def urdf(fixture, drop=True):
     path = fixture["urdf"]
     out = {}
@@ -496,6 +512,7 @@ def urdf(fixture, drop=True):
             names[i] = pb.getJointInfo(body, i, physicsClientId=c)[12].decode()
         index = {n: i for i, n in names.items()}
         out["masses"] = {n: pb.getDynamicsInfo(body, i, physicsClientId=c)[0] for i, n in names.items()}
+        out["inertias"] = {n: inertial(pb, c, body, i) for i, n in names.items()}
         if not drop:
             return out
         for a, b in fixture["pairs"]:

@@ -766,22 +766,28 @@
        after (assoc :after later)))))
 
 
+(defn- urdf-base
+  "Where PyBullet puts the root link of `plan`'s URDF so that the
+  creature stands where the plan has it, Z up: {:link :pos :quat}."
+  [plan]
+  (let [{:keys [roots]} (ex/tree plan)
+        root (first (filter #(= (first roots) (:id %)) (:segments plan)))]
+    {:link (:id root) :pos (geo/z-up (:position root))
+     :quat (geo/matrix->quat (z-up-rotation (geo/quat->matrix (:rotation root))))}))
+
 (defn- manifest-entry
   "What check_export.py needs of fixture `f`, written into `dir`."
   [f plan dir]
   (let [mj (str (io/file dir (str f ".xml")))
         inscribed (str (io/file dir (str f "-inscribed.xml")))
         urdf (str (io/file dir (str f ".urdf")))
-        dofs (ex/joint-dofs plan)
-        {:keys [roots]} (ex/tree plan)
-        root (first (filter #(= (first roots) (:id %)) (:segments plan)))]
+        dofs (ex/joint-dofs plan)]
     (ex/write! plan mj urdf)
     (ex/write! plan inscribed nil {:cone-strength :inscribed})
     {:name f :mjcf mj :mjcf_inscribed inscribed :urdf urdf :seconds seconds :held true
      :mjx_seconds 1.0 :random_seconds seconds
      :pairs (map :segments (:joints plan))
-     :base {:link (:id root) :pos (geo/z-up (:position root))
-            :quat (geo/matrix->quat (z-up-rotation (geo/quat->matrix (:rotation root))))}
+     :base (urdf-base plan)
      :joints (for [{:keys [name type segments rotation description]} (:joints plan)
                    :when (not= type :point)
                    :let [{ds :dofs} (dofs name)]]
@@ -877,6 +883,29 @@
       (is (< (double (:rest-speed cortex-held)) 0.1)
           (str "cortex's creature, held, still moving at " (:rest-speed cortex-held) " m/s")))))
 
+(defn- norm [m] (Math/sqrt (reduce + (map #(* % %) (flatten m)))))
+
+(defn- inertial
+  "Segment `seg` of a plan as a simulator holds it, Z up: {:com its
+  centre of mass, :inertia its inertia about it in the world's axes}."
+  [{:keys [position rotation inertia]}]
+  (let [R (geo/quat->matrix rotation)
+        axes (mm C (mm R (geo/quat->matrix (:rotation inertia))))]
+    {:com (geo/z-up (v+ position (mv R (:centre inertia))))
+     :inertia (mm (mm axes (mapv #(assoc [0.0 0.0 0.0] % (nth (:moments inertia) %)) (range 3)))
+                  (apply mapv vector axes))}))
+
+(defn- check-inertial
+  "`got` ({\"com\" \"inertia\"}, as a simulator read it) is segment
+  `seg`'s, to a millionth of the creature's size `sz` and of the
+  inertia."
+  [sz seg {com "com" I "inertia" :as got}]
+  (let [{want-com :com want :inertia} (inertial seg)]
+    (is (some? got) "no centre of mass and inertia read")
+    (when got
+      (is (< (norm (map - com want-com)) (* 1e-6 sz)) (pr-str com want-com))
+      (is (< (norm (map #(map - %1 %2) I want)) (* 1e-6 (norm want))) (pr-str I want)))))
+
 (defn- check-bodies
   "MuJoCo compiled `plan`'s document without an error or a warning, and
   its `bodies` are the plan's segments with the plan's masses, centres of
@@ -885,30 +914,26 @@
   (is (nil? (get mujoco "error")))
   (is (empty? (get mujoco "warnings")))
   (is (= (set (map :id (:segments plan))) (set (keys bodies))))
-  (doseq [{:keys [id mass position rotation inertia]} (:segments plan)
-          :let [sz (size plan)
-                {m "mass" com "com" I "inertia"} (bodies id)
-                R (geo/quat->matrix rotation)
-                axes (mm C (mm R (geo/quat->matrix (:rotation inertia))))
-                want (mm (mm axes (mapv #(assoc [0.0 0.0 0.0] % (nth (:moments inertia) %)) (range 3)))
-                         (apply mapv vector axes))
-                want-com (geo/z-up (v+ position (mv R (:centre inertia))))
-                norm (fn [m] (Math/sqrt (reduce + (map #(* % %) (flatten m)))))]]
+  (doseq [{:keys [id mass] :as seg} (:segments plan)]
     (testing id
-      (is (close? m mass 1e-6))
-      (is (< (norm (map - com want-com)) (* 1e-6 sz)))
-      (is (< (norm (map #(map - %1 %2) I want)) (* 1e-6 (norm want))) (pr-str I want)))))
+      (is (close? (get-in bodies [id "mass"]) mass 1e-6))
+      (check-inertial (size plan) seg (bodies id)))))
 
 (defn- check-urdf
   "check_urdf accepted `plan`'s URDF, saying no error (it exits 0 even
   when it drops a link's geometry), and PyBullet loaded it with the
-  plan's masses."
+  plan's masses, and, but for a Physics-tab creature's (whose inertias
+  are Blender's, checked in MuJoCo by its own test), the plan's centres
+  of mass and inertias."
   [plan urdf]
   (let [{code "code" out "output"} (get urdf "check_urdf")]
     (is (zero? (or code 0)) out)
     (is (not (str/includes? (str out) "Error")) out))
-  (doseq [{:keys [id mass]} (:segments plan)]
-    (is (close? (get-in urdf ["masses" id]) mass 1e-6) id)))
+  (doseq [{:keys [id mass] :as seg} (:segments plan)]
+    (testing (str "PyBullet's " id)
+      (is (close? (get-in urdf ["masses" id]) mass 1e-6) id)
+      (when-not (model/physics-tab? plan)
+        (check-inertial (size plan) seg (get-in urdf ["inertias" id]))))))
 
 (defn- check-limp-drop
   "Fixture `f`'s limp drop `d` in `who` (a drop of check_export.py)
@@ -1311,7 +1336,7 @@
                               mj (str file ".xml")
                               urdf (str file ".urdf")]]
                     (do (ex/write! p mj urdf)
-                        (cond-> {:name f :mjcf mj :urdf urdf :compile_only true}
+                        (cond-> {:name f :mjcf mj :urdf urdf :compile_only true :base (urdf-base p)}
                           (= f mjx-hand) (assoc :mjx_seconds 1.0))))]
       (when-let [result (check-export py dir entries)]
         (is (= (set (keys plans)) (set (keys result))))
@@ -1376,7 +1401,8 @@
           ;; what cortex's engine gives the plate: jME's axes, Z up's X, Z, Y
           [ix iy iz] @hexagon-moments
           {:strs [mujoco bodies urdf]} (get (check-export py dir [{:name "hexagon" :mjcf mj :urdf urdf
-                                                                   :compile_only true}])
+                                                                   :compile_only true
+                                                                   :base (urdf-base p)}])
                                             "hexagon")]
       (is (nil? (get mujoco "error")))
       (is (empty? (get mujoco "warnings")))
