@@ -473,15 +473,21 @@ def track(path, times):
     return out
 
 
+def link_pose(pb, c, body, i, kinematics=False):
+    """Where link `i` of PyBullet's `body` has its centre of mass, and how
+    its principal axes are turned: (position, quaternion); the base (-1)
+    is posed by its centre of mass. With `kinematics`, the link's pose is
+    worked out from the joints first (needed before the first step)."""
+    if i == -1:
+        return pb.getBasePositionAndOrientation(body, physicsClientId=c)
+    return pb.getLinkState(body, i, computeForwardKinematics=int(kinematics), physicsClientId=c)[:2]
+
+
 def inertial(pb, c, body, i):
     """Link `i` of PyBullet's `body` as loaded, in the world's axes: its
     centre of mass ("com") and its inertia about it ("inertia", 3 x 3),
-    turned from the principal axes PyBullet keeps (the base's pose is
-    its centre of mass's)."""
-    if i == -1:
-        pos, orn = pb.getBasePositionAndOrientation(body, physicsClientId=c)
-    else:
-        pos, orn = pb.getLinkState(body, i, computeForwardKinematics=1, physicsClientId=c)[:2]
+    turned from the principal axes PyBullet keeps."""
+    pos, orn = link_pose(pb, c, body, i, kinematics=True)
     r = np.array(pb.getMatrixFromQuaternion(orn)).reshape(3, 3)
     moments = pb.getDynamicsInfo(body, i, physicsClientId=c)[2]
     return {"com": [float(v) for v in pos], "inertia": (r @ np.diag(moments) @ r.T).tolist()}
@@ -527,13 +533,7 @@ def urdf(fixture, drop=True):
         masses = np.array([out["masses"][names[i]] for i in real])
 
         def coms():
-            ps = []
-            for i in real:
-                if i == -1:
-                    ps.append(pb.getBasePositionAndOrientation(body, physicsClientId=c)[0])
-                else:
-                    ps.append(pb.getLinkState(body, i, physicsClientId=c)[0])
-            return np.array(ps)
+            return np.array([link_pose(pb, c, body, i)[0] for i in real])
 
         prev = coms()
         heights, across, speeds = [], [], []
